@@ -1,0 +1,54 @@
+/* Minimal test harness: each test executable is one ctest; failures are counted and printed. */
+#ifndef BIREF_TEST_UTIL_H
+#define BIREF_TEST_UTIL_H
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+
+static int test_failures;
+static int test_checks;
+
+#define CHECK(cond)                                                                      \
+    do {                                                                                 \
+        test_checks++;                                                                   \
+        if (!(cond)) {                                                                   \
+            test_failures++;                                                             \
+            if (test_failures <= 20) fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond); \
+        }                                                                                \
+    } while (0)
+
+#define CHECK_NEAR(a, b, tol)                                                            \
+    do {                                                                                 \
+        double a_ = (a), b_ = (b);                                                       \
+        test_checks++;                                                                   \
+        if (!(fabs(a_ - b_) <= (tol))) {                                                 \
+            test_failures++;                                                             \
+            if (test_failures <= 20)                                                     \
+                fprintf(stderr, "%s:%d: %s = %.12g vs %s = %.12g (|diff| %.3g > %.3g)\n", __FILE__, __LINE__, #a, a_, \
+                        #b, b_, fabs(a_ - b_), (double)(tol));                           \
+        }                                                                                \
+    } while (0)
+
+static inline int test_report(const char *name)
+{
+    if (test_failures) {
+        fprintf(stderr, "%s: %d of %d checks FAILED\n", name, test_failures, test_checks);
+        return 1;
+    }
+    printf("%s: %d checks passed\n", name, test_checks);
+    return 0;
+}
+
+/* Seeded xorshift64*: reproducible property tests on every platform. */
+typedef struct { uint64_t s; } test_rng;
+static inline double test_uniform(test_rng *r, double lo, double hi)
+{
+    r->s ^= r->s >> 12;
+    r->s ^= r->s << 25;
+    r->s ^= r->s >> 27;
+    uint64_t x = r->s * 2685821657736338717ULL;
+    return lo + (hi - lo) * ((double)(x >> 11) / 9007199254740992.0);
+}
+
+#endif

@@ -1,0 +1,144 @@
+#include "cli_common.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+void cli_error(const char *cmd, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "biref %s: error: ", cmd);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+}
+
+int cli_parse_double(const char *cmd, const char *opt, const char *text, double *out)
+{
+    char *end = NULL;
+    errno = 0;
+    double v = strtod(text, &end);
+    if (end == text || *end != '\0' || errno == ERANGE || !isfinite(v)) {
+        cli_error(cmd, "%s: expected a finite number, got '%s'", opt, text);
+        return -1;
+    }
+    *out = v;
+    return 0;
+}
+
+int cli_parse_int(const char *cmd, const char *opt, const char *text, long lo, long hi, long *out)
+{
+    char *end = NULL;
+    errno = 0;
+    long v = strtol(text, &end, 10);
+    if (end == text || *end != '\0' || errno == ERANGE) {
+        cli_error(cmd, "%s: expected an integer, got '%s'", opt, text);
+        return -1;
+    }
+    if (v < lo || v > hi) {
+        cli_error(cmd, "%s: must be between %ld and %ld, got %ld", opt, lo, hi, v);
+        return -1;
+    }
+    *out = v;
+    return 0;
+}
+
+int cli_parse_list(const char *cmd, const char *opt, const char *text, double *out, int n)
+{
+    char buf[256];
+    if (strlen(text) >= sizeof buf) {
+        cli_error(cmd, "%s: value too long", opt);
+        return -1;
+    }
+    strcpy(buf, text);
+    int count = 0;
+    char *save = NULL;
+    for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+        if (count == n) break;
+        char *end = NULL;
+        errno = 0;
+        double v = strtod(tok, &end);
+        if (end == tok || *end != '\0' || errno == ERANGE || !isfinite(v)) {
+            cli_error(cmd, "%s: expected %d comma-separated finite numbers, got '%s'", opt, n, text);
+            return -1;
+        }
+        out[count++] = v;
+    }
+    /* Reject "1,2", "1,2,3,4" and empty fields such as "1,,2". */
+    int commas = 0;
+    for (const char *c = text; *c; c++) commas += *c == ',';
+    if (count != n || commas != n - 1) {
+        cli_error(cmd, "%s: expected %d comma-separated finite numbers, got '%s'", opt, n, text);
+        return -1;
+    }
+    return 0;
+}
+
+void cli_slab_opts_init(cli_slab_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    o->slab.eta_i = 1.0;
+}
+
+int cli_slab_opts_handle(const char *cmd, cli_slab_opts *o, int code, const char *arg)
+{
+    double v;
+    switch (code) {
+    case OPT_ETA_O:
+        o->have_eta_o = 1;
+        return cli_parse_double(cmd, "--eta-o", arg, &o->slab.eta_o) ? -1 : 1;
+    case OPT_ETA_E:
+        o->have_eta_e = 1;
+        return cli_parse_double(cmd, "--eta-e", arg, &o->slab.eta_e) ? -1 : 1;
+    case OPT_ETA_I: return cli_parse_double(cmd, "--eta-i", arg, &o->slab.eta_i) ? -1 : 1;
+    case OPT_AXIS:
+        o->have_axis = 1;
+        return cli_parse_list(cmd, "--axis", arg, o->slab.axis, 3) ? -1 : 1;
+    case OPT_THICKNESS_UM:
+    case OPT_THICKNESS_MM:
+    case OPT_THICKNESS_NM: {
+        const char *name = code == OPT_THICKNESS_UM ? "--thickness-um"
+                           : code == OPT_THICKNESS_MM ? "--thickness-mm" : "--thickness-nm";
+        if (o->have_thickness) {
+            cli_error(cmd, "%s: thickness given twice", name);
+            return -1;
+        }
+        if (cli_parse_double(cmd, name, arg, &v)) return -1;
+        o->have_thickness = 1;
+        o->slab.thickness_nm = v * (code == OPT_THICKNESS_UM ? 1e3 : code == OPT_THICKNESS_MM ? 1e6 : 1.0);
+        return 1;
+    }
+    case OPT_THETA_DEG:
+        o->have_theta = 1;
+        return cli_parse_double(cmd, "--theta-deg", arg, &o->theta_deg) ? -1 : 1;
+    default: return 0;
+    }
+}
+
+int cli_slab_opts_finish(const char *cmd, cli_slab_opts *o)
+{
+    if (!o->have_eta_o) return cli_error(cmd, "missing --eta-o"), -1;
+    if (!o->have_eta_e) return cli_error(cmd, "missing --eta-e"), -1;
+    if (!o->have_axis) return cli_error(cmd, "missing --axis"), -1;
+    if (!o->have_thickness) return cli_error(cmd, "missing --thickness-um (or --thickness-mm)"), -1;
+    char msg[200];
+    if (biref_slab_check(&o->slab, msg, sizeof msg) != BIREF_OK) return cli_error(cmd, "%s", msg), -1;
+    if (biref_theta_check(o->theta_deg * M_PI / 180.0, msg, sizeof msg) != BIREF_OK)
+        return cli_error(cmd, "--theta-deg: %s", msg), -1;
+    double n = sqrt(o->slab.axis[0] * o->slab.axis[0] + o->slab.axis[1] * o->slab.axis[1] +
+                    o->slab.axis[2] * o->slab.axis[2]);
+    for (int i = 0; i < 3; i++) o->slab.axis[i] /= n;
+    return 0;
+}
+
+void cli_getopt_error(const char *cmd, int code, char *const argv[])
+{
+    const char *opt = argv[optind - 1];
+    if (code == ':')
+        cli_error(cmd, "option '%s' needs a value (see biref %s --help)", opt, cmd);
+    else
+        cli_error(cmd, "unknown option '%s' (see biref %s --help)", opt, cmd);
+}

@@ -1,0 +1,67 @@
+/* Shared command-line plumbing: strict number parsing, one-line errors, slab options. */
+#ifndef BIREF_CLI_COMMON_H
+#define BIREF_CLI_COMMON_H
+
+#include <getopt.h>
+#include <stdio.h>
+
+#include "biref/biref.h"
+
+/* Exit codes: 0 success, 1 runtime failure (I/O, numerics), 2 bad usage or bad input. */
+enum { CLI_EXIT_OK = 0, CLI_EXIT_FAIL = 1, CLI_EXIT_USAGE = 2 };
+
+/* Prints "biref CMD: error: ..." as one line on stderr. */
+void cli_error(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* Strict parsers: the whole string must be a finite number. Return 0 on success. */
+int cli_parse_double(const char *cmd, const char *opt, const char *text, double *out);
+int cli_parse_int(const char *cmd, const char *opt, const char *text, long lo, long hi, long *out);
+/* Parses n comma-separated finite numbers ("a,b,c"). */
+int cli_parse_list(const char *cmd, const char *opt, const char *text, double *out, int n);
+
+/* Options shared by every command that describes one slab at one angle. */
+typedef struct {
+    biref_slab slab;
+    double theta_deg;
+    int have_eta_o, have_eta_e, have_axis, have_thickness, have_theta;
+} cli_slab_opts;
+
+enum {
+    OPT_ETA_O = 1000,
+    OPT_ETA_E,
+    OPT_AXIS,
+    OPT_THICKNESS_UM,
+    OPT_THICKNESS_MM,
+    OPT_THICKNESS_NM,
+    OPT_THETA_DEG,
+    OPT_ETA_I,
+    OPT_SLAB_LAST
+};
+
+#define CLI_SLAB_LONG_OPTIONS                                                               \
+    {"eta-o", required_argument, 0, OPT_ETA_O}, {"eta-e", required_argument, 0, OPT_ETA_E}, \
+        {"axis", required_argument, 0, OPT_AXIS},                                           \
+        {"thickness-um", required_argument, 0, OPT_THICKNESS_UM},                           \
+        {"thickness-mm", required_argument, 0, OPT_THICKNESS_MM},                           \
+        {"thickness-nm", required_argument, 0, OPT_THICKNESS_NM},                           \
+        {"theta-deg", required_argument, 0, OPT_THETA_DEG}, {"eta-i", required_argument, 0, OPT_ETA_I}
+
+#define CLI_SLAB_HELP                                                                        \
+    "  --eta-o N            ordinary refractive index (required)\n"                          \
+    "  --eta-e N            extraordinary refractive index (required)\n"                     \
+    "  --axis a,b,c         optic axis in the slab frame, normalised by biref (required)\n"  \
+    "                       frame: surface y = 0, slab below, light in the YZ plane\n"       \
+    "  --thickness-um D     slab thickness in micrometres (or --thickness-mm, --thickness-nm)\n" \
+    "  --theta-deg A        angle of incidence in degrees, 0 <= A < 90 (default 0)\n"       \
+    "  --eta-i N            index of the surrounding medium, both sides (default 1)\n"
+
+void cli_slab_opts_init(cli_slab_opts *o);
+/* Handles one slab option; returns 1 if handled, 0 if the code is not a slab option, -1 on error. */
+int cli_slab_opts_handle(const char *cmd, cli_slab_opts *o, int code, const char *arg);
+/* Checks presence and physical validity; prints one error line and returns -1 on failure. */
+int cli_slab_opts_finish(const char *cmd, cli_slab_opts *o);
+
+/* Reports an unknown option or a missing argument detected by getopt_long (opterr = 0). */
+void cli_getopt_error(const char *cmd, int code, char *const argv[]);
+
+#endif

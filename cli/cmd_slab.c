@@ -1,0 +1,164 @@
+/* biref slab: Jones matrices and power fractions of one slab at one (theta, lambda). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cli_common.h"
+#include "commands.h"
+#include "json_out.h"
+
+static const char *const CMD = "slab";
+
+static void help(void)
+{
+    printf("usage: biref slab [OPTIONS]\n\n"
+           "Transmission and reflection of a plane wave by a uniaxial slab at one wavelength:\n"
+           "2x2 Jones matrices (input s/p -> output s/p), power fractions, normal modes.\n\n"
+           "Options:\n" CLI_SLAB_HELP
+           "  --lambda-nm L        vacuum wavelength in nm (default 550)\n"
+           "  --method M           closed-form (default; paper eq. 17) or tmm (4x4 transfer matrix)\n"
+           "  --json               machine-readable output\n"
+           "  -h, --help           this help\n\n"
+           "Example:\n  biref slab --eta-o 1.775 --eta-e 1.231 --axis 0.084,0.979,-0.187 \\\n"
+           "             --thickness-mm 1.15 --theta-deg 30 --lambda-nm 550 --json\n");
+}
+
+enum { OPT_LAMBDA = OPT_SLAB_LAST + 1, OPT_METHOD, OPT_JSON };
+
+static const char *const MODE_NAMES[4] = {"o_down", "e_down", "o_up", "e_up"};
+static const char *const SP[2] = {"s", "p"};
+
+static cJSON *modes_json(const biref_slab_state *st)
+{
+    cJSON *m = cJSON_CreateObject();
+    for (int i = 0; i < 4; i++) {
+        cJSON *o = cJSON_AddObjectToObject(m, MODE_NAMES[i]);
+        cJSON_AddItemToObject(o, "q", json_complex(st->modes.q[i]));
+        cJSON_AddItemToObject(o, "E", json_cvec3(st->modes.E[i]));
+        cJSON_AddItemToObject(o, "poynting", json_vec3(st->modes.poynting[i]));
+        if (isfinite(st->modes.eta_eff[i]))
+            cJSON_AddNumberToObject(o, "eta_eff", st->modes.eta_eff[i]);
+        else
+            cJSON_AddNullToObject(o, "eta_eff");
+    }
+    return m;
+}
+
+static void print_table(const char *title, const biref_jones *J, double P[2][2])
+{
+    printf("%s   (rows: input, columns: output)\n", title);
+    printf("  %-3s %-28s %-28s\n", "", "s", "p");
+    for (int i = 0; i < 2; i++) {
+        printf("  %-3s", SP[i]);
+        for (int j = 0; j < 2; j++) {
+            char cell[64];
+            snprintf(cell, sizeof cell, "%.6f (%+.4f%+.4fi)", P[i][j], creal(J->m[i][j]), cimag(J->m[i][j]));
+            printf(" %-28s", cell);
+        }
+        printf("\n");
+    }
+}
+
+int cmd_slab(int argc, char **argv)
+{
+    cli_slab_opts so;
+    cli_slab_opts_init(&so);
+    double lambda = 550.0;
+    int json = 0, tmm = 0;
+    static const struct option longopts[] = {CLI_SLAB_LONG_OPTIONS,
+                                             {"lambda-nm", required_argument, 0, OPT_LAMBDA},
+                                             {"method", required_argument, 0, OPT_METHOD},
+                                             {"json", no_argument, 0, OPT_JSON},
+                                             {"help", no_argument, 0, 'h'},
+                                             {0, 0, 0, 0}};
+    opterr = 0;
+    optind = 1;
+    int c;
+    while ((c = getopt_long(argc, argv, ":h", longopts, NULL)) != -1) {
+        int r = cli_slab_opts_handle(CMD, &so, c, optarg);
+        if (r < 0) return CLI_EXIT_USAGE;
+        if (r > 0) continue;
+        switch (c) {
+        case 'h': help(); return CLI_EXIT_OK;
+        case OPT_LAMBDA:
+            if (cli_parse_double(CMD, "--lambda-nm", optarg, &lambda)) return CLI_EXIT_USAGE;
+            if (lambda <= 0) return cli_error(CMD, "--lambda-nm: must be positive, got %g", lambda), CLI_EXIT_USAGE;
+            break;
+        case OPT_METHOD:
+            if (!strcmp(optarg, "closed-form"))
+                tmm = 0;
+            else if (!strcmp(optarg, "tmm"))
+                tmm = 1;
+            else
+                return cli_error(CMD, "--method: expected closed-form or tmm, got '%s'", optarg), CLI_EXIT_USAGE;
+            break;
+        case OPT_JSON: json = 1; break;
+        default: cli_getopt_error(CMD, c, argv); return CLI_EXIT_USAGE;
+        }
+    }
+    if (optind < argc) return cli_error(CMD, "unexpected argument '%s'", argv[optind]), CLI_EXIT_USAGE;
+    if (cli_slab_opts_finish(CMD, &so)) return CLI_EXIT_USAGE;
+
+    double theta = so.theta_deg * M_PI / 180.0;
+    biref_slab_state st;
+    biref_status s = biref_slab_prepare(&so.slab, theta, &st);
+    if (s != BIREF_OK) return cli_error(CMD, "%s", biref_status_string(s)), CLI_EXIT_FAIL;
+    biref_jones T, R;
+    if (tmm) {
+        s = biref_slab_jones_tmm(&so.slab, theta, lambda, &T, &R);
+        if (s != BIREF_OK) return cli_error(CMD, "tmm: %s", biref_status_string(s)), CLI_EXIT_FAIL;
+    } else {
+        biref_slab_jones_at(&st, lambda, &T, &R);
+    }
+    double PT[2][2], PR[2][2];
+    biref_jones_intensity(&T, PT);
+    biref_jones_intensity(&R, PR);
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++)
+            if (!isfinite(PT[i][j]) || !isfinite(PR[i][j]))
+                return cli_error(CMD, "numerical failure (non-finite result)"), CLI_EXIT_FAIL;
+
+    if (json) {
+        cJSON *root = cJSON_CreateObject();
+        cJSON_AddStringToObject(root, "method", tmm ? "tmm" : "closed-form");
+        cJSON *in = cJSON_AddObjectToObject(root, "input");
+        cJSON_AddNumberToObject(in, "eta_o", so.slab.eta_o);
+        cJSON_AddNumberToObject(in, "eta_e", so.slab.eta_e);
+        cJSON_AddItemToObject(in, "axis", json_vec3(so.slab.axis));
+        cJSON_AddNumberToObject(in, "thickness_nm", so.slab.thickness_nm);
+        cJSON_AddNumberToObject(in, "theta_deg", so.theta_deg);
+        cJSON_AddNumberToObject(in, "lambda_nm", lambda);
+        cJSON_AddNumberToObject(in, "eta_i", so.slab.eta_i);
+        cJSON_AddItemToObject(root, "T", json_sp_matrix(PT));
+        cJSON_AddItemToObject(root, "R", json_sp_matrix(PR));
+        cJSON_AddItemToObject(root, "jones_T", json_sp_cmatrix(T.m));
+        cJSON_AddItemToObject(root, "jones_R", json_sp_cmatrix(R.m));
+        cJSON *en = cJSON_AddObjectToObject(root, "energy");
+        for (int i = 0; i < 2; i++) cJSON_AddNumberToObject(en, SP[i], PT[i][0] + PT[i][1] + PR[i][0] + PR[i][1]);
+        cJSON_AddNumberToObject(root, "K", st.K);
+        cJSON *km = cJSON_AddObjectToObject(root, "K_max");
+        cJSON_AddNumberToObject(km, "o", st.modes.K_max_o);
+        cJSON_AddNumberToObject(km, "e", st.modes.K_max_e);
+        cJSON *tr = cJSON_AddObjectToObject(root, "total_reflection");
+        cJSON_AddBoolToObject(tr, "o", st.modes.evanescent_o);
+        cJSON_AddBoolToObject(tr, "e", st.modes.evanescent_e);
+        cJSON_AddBoolToObject(tr, "any", st.total_reflection);
+        cJSON_AddItemToObject(root, "modes", modes_json(&st));
+        return json_print_and_free(root) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
+    }
+    printf("slab: eta_o %.6g, eta_e %.6g, axis (%.4f, %.4f, %.4f), d %.6g um, eta_i %.4g\n", so.slab.eta_o,
+           so.slab.eta_e, so.slab.axis[0], so.slab.axis[1], so.slab.axis[2], so.slab.thickness_nm / 1e3,
+           so.slab.eta_i);
+    printf("theta %.4g deg, lambda %.6g nm, method %s, K %.6f, K_max o %.6f e %.6f%s\n\n", so.theta_deg, lambda,
+           tmm ? "tmm" : "closed-form", st.K, st.modes.K_max_o, st.modes.K_max_e,
+           st.total_reflection ? "  (total reflection inside)" : "");
+    print_table("Transmission: power fraction (Jones amplitude)", &T, PT);
+    print_table("Reflection:   power fraction (Jones amplitude)", &R, PR);
+    printf("\nEnergy check T+R: s %.12f, p %.12f\n", PT[0][0] + PT[0][1] + PR[0][0] + PR[0][1],
+           PT[1][0] + PT[1][1] + PR[1][0] + PR[1][1]);
+    printf("\nNormal modes (q in units of k0):\n");
+    for (int i = 0; i < 4; i++)
+        printf("  %-7s q = %+.6f%+.6fi   poynting (%+.4f, %+.4f, %+.4f)\n", MODE_NAMES[i], creal(st.modes.q[i]),
+               cimag(st.modes.q[i]), st.modes.poynting[i][0], st.modes.poynting[i][1], st.modes.poynting[i][2]);
+    return CLI_EXIT_OK;
+}

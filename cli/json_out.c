@@ -1,0 +1,54 @@
+#include "json_out.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+
+static const char *const SP[2] = {"s", "p"};
+
+cJSON *json_complex(double complex z)
+{
+    double v[2] = {creal(z), cimag(z)};
+    return cJSON_CreateDoubleArray(v, 2);
+}
+
+cJSON *json_vec3(const double v[3]) { return cJSON_CreateDoubleArray(v, 3); }
+
+cJSON *json_cvec3(const double complex v[3])
+{
+    cJSON *a = cJSON_CreateArray();
+    for (int i = 0; i < 3; i++) cJSON_AddItemToArray(a, json_complex(v[i]));
+    return a;
+}
+
+cJSON *json_sp_matrix(const double m[2][2])
+{
+    cJSON *o = cJSON_CreateObject();
+    for (int i = 0; i < 2; i++) {
+        cJSON *row = cJSON_AddObjectToObject(o, SP[i]);
+        for (int j = 0; j < 2; j++) cJSON_AddNumberToObject(row, SP[j], m[i][j]);
+    }
+    return o;
+}
+
+cJSON *json_sp_cmatrix(const double complex m[2][2])
+{
+    cJSON *o = cJSON_CreateObject();
+    for (int i = 0; i < 2; i++) {
+        cJSON *row = cJSON_AddObjectToObject(o, SP[i]);
+        for (int j = 0; j < 2; j++) cJSON_AddItemToObject(row, SP[j], json_complex(m[i][j]));
+    }
+    return o;
+}
+
+int json_print_and_free(cJSON *root)
+{
+    char *text = root ? cJSON_Print(root) : NULL;
+    cJSON_Delete(root);
+    if (!text) {
+        fprintf(stderr, "biref: error: out of memory while writing JSON\n");
+        return 1;
+    }
+    puts(text);
+    free(text);
+    return 0;
+}

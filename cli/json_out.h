@@ -1,0 +1,20 @@
+/* Helpers that build cJSON values for the physics types (output only; parsing is cJSON's). */
+#ifndef BIREF_CLI_JSON_OUT_H
+#define BIREF_CLI_JSON_OUT_H
+
+#include <cjson/cJSON.h>
+#include <complex.h>
+
+#include "biref/biref.h"
+
+cJSON *json_complex(double complex z);
+cJSON *json_vec3(const double v[3]);
+cJSON *json_cvec3(const double complex v[3]);
+/* {"s": {"s": x, "p": x}, "p": {...}} of reals. */
+cJSON *json_sp_matrix(const double m[2][2]);
+/* Same indexing, values as [re, im]. */
+cJSON *json_sp_cmatrix(const double complex m[2][2]);
+/* Prints, frees, returns 0 or 1 on allocation failure. */
+int json_print_and_free(cJSON *root);
+
+#endif

@@ -1,0 +1,112 @@
+/* Fresnel coefficients of a plane interface between two homogeneous media (paper appendix A).
+ *
+ * Instead of the extracted closed forms (which carry OCR damage, see docs/PHYSICS.md) we solve
+ * the boundary conditions directly: the tangential components E_x, E_z, H_x, H_z are continuous
+ * across y = 0. For one incident mode this is a 4x4 linear system in the two reflected and the
+ * two transmitted amplitudes; the same matrix serves incidence from above and from below, and
+ * the same code covers isotropic/anisotropic media on either side. */
+#include <math.h>
+
+#include "biref/optics.h"
+#include "optics/modes_internal.h"
+
+/* Tangential field vector (E_x, E_z, H_x, H_z) of mode idx. */
+static void tangential(const biref_modes *m, int idx, double complex f[4])
+{
+    f[0] = m->E[idx][0];
+    f[1] = m->E[idx][2];
+    f[2] = m->H[idx][0];
+    f[3] = m->H[idx][2];
+}
+
+/* Solves A X = B in place for 4 right-hand sides by Gaussian elimination with partial
+ * pivoting (a fixed 4x4 system on the per-sample hot path: no allocation, no library call). */
+static biref_status solve4(double complex A[4][4], double complex B[4][4])
+{
+    double scale = 0.0;
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++) scale = fmax(scale, cabs(A[i][j]));
+    for (int c = 0; c < 4; c++) {
+        int p = c;
+        double best = cabs(A[c][c]);
+        for (int r = c + 1; r < 4; r++)
+            if (cabs(A[r][c]) > best) best = cabs(A[r][c]), p = r;
+        if (!(best > 1e-13 * scale)) return BIREF_ERR_SINGULAR;
+        if (p != c)
+            for (int j = 0; j < 4; j++) {
+                double complex t = A[c][j];
+                A[c][j] = A[p][j];
+                A[p][j] = t;
+                t = B[c][j];
+                B[c][j] = B[p][j];
+                B[p][j] = t;
+            }
+        double complex inv = 1.0 / A[c][c];
+        for (int r = c + 1; r < 4; r++) {
+            double complex f = A[r][c] * inv;
+            if (f == 0.0) continue;
+            for (int j = c; j < 4; j++) A[r][j] -= f * A[c][j];
+            for (int j = 0; j < 4; j++) B[r][j] -= f * B[c][j];
+        }
+    }
+    for (int c = 3; c >= 0; c--) {
+        double complex inv = 1.0 / A[c][c];
+        for (int j = 0; j < 4; j++) {
+            double complex s = B[c][j];
+            for (int k = c + 1; k < 4; k++) s -= A[c][k] * B[k][j];
+            B[c][j] = s * inv;
+        }
+    }
+    return BIREF_OK;
+}
+
+biref_status biref_interface_from_modes(const biref_modes *up, const biref_modes *lo, biref_interface *out)
+{
+    /* Unknowns x = (a0, a1, b0, b1): a = amplitudes of the upper medium's up-going modes,
+     * b = the lower medium's down-going modes. Continuity: sum a F_up + incident_above =
+     * sum b F_lo_down + incident_below, i.e. [F_up | -F_lo_down] x = rhs. */
+    double complex A[4][4], B[4][4], f[4];
+    for (int j = 0; j < 2; j++) {
+        tangential(up, BIREF_MODE_O_UP + j, f);
+        for (int r = 0; r < 4; r++) A[r][j] = f[r];
+        tangential(lo, BIREF_MODE_O_DOWN + j, f);
+        for (int r = 0; r < 4; r++) A[r][2 + j] = -f[r];
+    }
+    for (int i = 0; i < 2; i++) {
+        tangential(up, BIREF_MODE_O_DOWN + i, f); /* incident from above */
+        for (int r = 0; r < 4; r++) B[r][i] = -f[r];
+        tangential(lo, BIREF_MODE_O_UP + i, f); /* incident from below */
+        for (int r = 0; r < 4; r++) B[r][2 + i] = f[r];
+    }
+    biref_status s = solve4(A, B);
+    if (s != BIREF_OK) return s;
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++) {
+            out->r_down[i][j] = B[j][i];
+            out->t_down[i][j] = B[2 + j][i];
+            out->t_up[i][j] = B[j][2 + i];
+            out->r_up[i][j] = B[2 + j][2 + i];
+        }
+    return BIREF_OK;
+}
+
+static void modes_of(const biref_medium *m, double K, biref_modes *out)
+{
+    if (m->isotropic)
+        biref_isotropic_modes(m->eta_o, K, out);
+    else
+        biref_uniaxial_modes(m->eta_o, m->eta_e, m->axis, K, out);
+}
+
+biref_status biref_interface_solve(const biref_medium *upper, const biref_medium *lower, double K,
+                                   biref_interface *out)
+{
+    biref_status s = biref_medium_check(upper, NULL, 0);
+    if (s == BIREF_OK) s = biref_medium_check(lower, NULL, 0);
+    if (s != BIREF_OK) return s;
+    if (!isfinite(K) || K < 0.0) return BIREF_ERR_INVALID;
+    biref_modes mu, ml;
+    modes_of(upper, K, &mu);
+    modes_of(lower, K, &ml);
+    return biref_interface_from_modes(&mu, &ml, out);
+}

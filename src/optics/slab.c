@@ -1,0 +1,85 @@
+/* Jones matrices of a uniaxial slab in a homogeneous surround: all orders of internal
+ * reflection summed in closed form (paper §4, eq. 17) and the reflection analogue. */
+#include <math.h>
+#include <string.h>
+
+#include "biref/optics.h"
+#include "optics/cmat2.h"
+#include "optics/modes_internal.h"
+
+biref_status biref_slab_prepare(const biref_slab *slab, double theta, biref_slab_state *st)
+{
+    biref_status s = biref_slab_check(slab, NULL, 0);
+    if (s == BIREF_OK) s = biref_theta_check(theta, NULL, 0);
+    if (s != BIREF_OK) return s;
+    memset(st, 0, sizeof *st);
+    st->slab = *slab;
+    double an = sqrt(slab->axis[0] * slab->axis[0] + slab->axis[1] * slab->axis[1] + slab->axis[2] * slab->axis[2]);
+    for (int i = 0; i < 3; i++) st->slab.axis[i] = slab->axis[i] / an;
+    st->theta = theta;
+    st->K = slab->eta_i * sin(theta); /* eq. 1 */
+
+    biref_modes ambient;
+    biref_isotropic_modes(slab->eta_i, st->K, &ambient);
+    biref_uniaxial_modes(slab->eta_o, slab->eta_e, st->slab.axis, st->K, &st->modes);
+    s = biref_interface_from_modes(&ambient, &st->modes, &st->top);
+    if (s == BIREF_OK) s = biref_interface_from_modes(&st->modes, &ambient, &st->bottom);
+    if (s != BIREF_OK) return s;
+
+    /* READING-NOTES 4: each leg gains its own full phase k0 * (-q_down) d or k0 * q_up d; the
+     * lateral offsets cancel against the incident wavefront (eq. 11), so no path length is
+     * subtracted per round trip (appendix B's "- 2 P_o" would erase the Fabry–Pérot phase). */
+    double d = slab->thickness_nm;
+    st->opl_down[BIREF_O] = -st->modes.q[BIREF_MODE_O_DOWN] * d;
+    st->opl_down[BIREF_E] = -st->modes.q[BIREF_MODE_E_DOWN] * d;
+    st->opl_up[BIREF_O] = st->modes.q[BIREF_MODE_O_UP] * d;
+    st->opl_up[BIREF_E] = st->modes.q[BIREF_MODE_E_UP] * d;
+    st->total_reflection = st->modes.evanescent_o || st->modes.evanescent_e;
+    return BIREF_OK;
+}
+
+void biref_slab_jones_at(const biref_slab_state *st, double lambda_nm, biref_jones *T, biref_jones *R)
+{
+    double k = 2.0 * M_PI / lambda_nm;
+    double complex pd0 = cexp(I * k * st->opl_down[0]), pd1 = cexp(I * k * st->opl_down[1]);
+    double complex pu0 = cexp(I * k * st->opl_up[0]), pu1 = cexp(I * k * st->opl_up[1]);
+    cmat2 t01 = cmat2_from(st->top.t_down), r10 = cmat2_from(st->top.r_up);
+    cmat2 r12 = cmat2_from(st->bottom.r_down), t12 = cmat2_from(st->bottom.t_down);
+
+    /* Row-vector convention: a leg is diag(phases) on the right of what came before.
+     * down_r12 = P_down * r12 (eq. 15 D-down), round trip D = P_down r12 P_up r10. */
+    cmat2 down_r12 = cmat2_scale_rows(r12, pd0, pd1);
+    cmat2 up_r10 = cmat2_scale_rows(r10, pu0, pu1);
+    cmat2 D = cmat2_mul(down_r12, up_r10);
+    cmat2 entry = cmat2_mul(t01, cmat2_inv_one_minus(D)); /* amplitudes going down at y = 0 */
+    if (T) {
+        cmat2 out = cmat2_mul(entry, cmat2_scale_rows(t12, pd0, pd1)); /* eq. 17 */
+        memcpy(T->m, out.m, sizeof out.m);
+    }
+    if (R) {
+        cmat2 t10 = cmat2_from(st->top.t_up);
+        cmat2 back = cmat2_mul(down_r12, cmat2_scale_rows(t10, pu0, pu1));
+        cmat2 out = cmat2_add(cmat2_from(st->top.r_down), cmat2_mul(entry, back));
+        memcpy(R->m, out.m, sizeof out.m);
+    }
+}
+
+biref_status biref_slab_jones(const biref_slab *slab, double theta, double lambda_nm, biref_jones *T,
+                              biref_jones *R)
+{
+    if (!isfinite(lambda_nm) || lambda_nm <= 0.0) return BIREF_ERR_INVALID;
+    biref_slab_state st;
+    biref_status s = biref_slab_prepare(slab, theta, &st);
+    if (s != BIREF_OK) return s;
+    biref_slab_jones_at(&st, lambda_nm, T, R);
+    return BIREF_OK;
+}
+
+void biref_jones_intensity(const biref_jones *J, double out[2][2])
+{
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++) {
+            double complex a = J->m[i][j];
+            out[i][j] = creal(a) * creal(a) + cimag(a) * cimag(a);
+        }
+}

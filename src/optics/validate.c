@@ -1,0 +1,62 @@
+/* Domain checks: every public entry point rejects input that would produce NaN or nonsense. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+
+#include "biref/optics.h"
+#include "optics/validate.h"
+
+biref_status biref_fail(char *msg, size_t msg_len, const char *fmt, ...)
+{
+    if (msg && msg_len) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(msg, msg_len, fmt, ap);
+        va_end(ap);
+    }
+    return BIREF_ERR_INVALID;
+}
+
+biref_status biref_check_index(const char *name, double eta, char *msg, size_t msg_len)
+{
+    if (!isfinite(eta)) return biref_fail(msg, msg_len, "%s must be a finite number (got %g)", name, eta);
+    if (eta <= 0.0) return biref_fail(msg, msg_len, "%s must be positive (got %g)", name, eta);
+    return BIREF_OK;
+}
+
+biref_status biref_check_axis(const double axis[3], char *msg, size_t msg_len)
+{
+    for (int i = 0; i < 3; i++)
+        if (!isfinite(axis[i])) return biref_fail(msg, msg_len, "optic axis component %d is not finite", i);
+    double n = sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+    if (!(n > 1e-12)) return biref_fail(msg, msg_len, "optic axis must be non-zero");
+    return BIREF_OK;
+}
+
+biref_status biref_check_lambda(double lambda_nm, char *msg, size_t msg_len)
+{
+    if (!isfinite(lambda_nm) || lambda_nm <= 0.0)
+        return biref_fail(msg, msg_len, "wavelength must be a positive finite number of nm (got %g)", lambda_nm);
+    return BIREF_OK;
+}
+
+biref_status biref_slab_check(const biref_slab *slab, char *msg, size_t msg_len)
+{
+    if (!slab) return biref_fail(msg, msg_len, "slab is NULL");
+    biref_status s = biref_check_index("eta_o", slab->eta_o, msg, msg_len);
+    if (s == BIREF_OK) s = biref_check_index("eta_e", slab->eta_e, msg, msg_len);
+    if (s == BIREF_OK) s = biref_check_index("eta_i", slab->eta_i, msg, msg_len);
+    if (s == BIREF_OK) s = biref_check_axis(slab->axis, msg, msg_len);
+    if (s != BIREF_OK) return s;
+    if (!isfinite(slab->thickness_nm) || slab->thickness_nm <= 0.0)
+        return biref_fail(msg, msg_len, "thickness must be a positive finite length (got %g nm)", slab->thickness_nm);
+    return BIREF_OK;
+}
+
+biref_status biref_theta_check(double theta_rad, char *msg, size_t msg_len)
+{
+    if (!isfinite(theta_rad) || theta_rad < 0.0 || theta_rad >= M_PI / 2)
+        return biref_fail(msg, msg_len, "angle of incidence must be in [0, 90) degrees (got %g deg)",
+                          theta_rad * 180.0 / M_PI);
+    return BIREF_OK;
+}

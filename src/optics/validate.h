@@ -1,0 +1,14 @@
+/* Parameter checks shared by the library's entry points; each writes a one-line reason. */
+#ifndef BIREF_OPTICS_VALIDATE_H
+#define BIREF_OPTICS_VALIDATE_H
+
+#include <stddef.h>
+
+#include "biref/common.h"
+
+biref_status biref_fail(char *msg, size_t msg_len, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+biref_status biref_check_index(const char *name, double eta, char *msg, size_t msg_len);
+biref_status biref_check_axis(const double axis[3], char *msg, size_t msg_len);
+biref_status biref_check_lambda(double lambda_nm, char *msg, size_t msg_len);
+
+#endif

@@ -1,5 +1,92 @@
-/* biref — spectral (placeholder, filled by its issue). */
+/* biref — spectral integration of slab intensities over colour-matching functions (paper §5).
+ *
+ * A biref_spectral object holds the band-normalised sensitivity functions and the look-up
+ * tables of S(cos(k D), Λ_j) and S(sin(k D), Λ_j); it is immutable after creation and may be
+ * shared by any number of threads. Results are band-normalised: a wavelength-independent
+ * intensity f integrates to (f, f, f). */
 #ifndef BIREF_SPECTRAL_H
 #define BIREF_SPECTRAL_H
+
+#include "biref/color.h"
 #include "biref/common.h"
+#include "biref/optics.h"
+
+#ifdef __cplusplus
+extern "C" {
 #endif
+
+typedef struct {
+    biref_cmf_kind cmf;     /* default BIREF_CMF_CIE1931 */
+    double lambda_min_nm;   /* default 380 */
+    double lambda_max_nm;   /* default 700 */
+} biref_spectral_config;
+
+void biref_spectral_config_default(biref_spectral_config *cfg);
+
+typedef struct biref_spectral biref_spectral;
+
+/* BIREF_ERR_INVALID for an unknown cmf, non-finite or inverted range (min >= max, min <= 0). */
+biref_status biref_spectral_create(const biref_spectral_config *cfg, biref_spectral **out);
+void biref_spectral_destroy(biref_spectral *sp);
+const biref_cmf_band *biref_spectral_band(const biref_spectral *sp);
+
+/* Band-normalised integrals of |J[in][out]|^2 for transmission and reflection,
+ * [input s/p][output s/p][band x/y/z]. */
+typedef struct {
+    double T[2][2][3];
+    double R[2][2][3];
+} biref_spectrum;
+
+typedef enum {
+    BIREF_METHOD_ANALYTIC = 0,     /* the paper's approximation, eq. 26 with m = 1 */
+    BIREF_METHOD_NUMERIC = 1,      /* N uniform midpoint samples of eq. 17 */
+    BIREF_METHOD_GROUND_TRUTH = 2  /* numeric with N = 16384 (paper §6) */
+} biref_method;
+
+#define BIREF_GROUND_TRUTH_SAMPLES 16384
+
+/* "analytic", "numeric", "ground-truth". */
+biref_status biref_method_from_name(const char *name, biref_method *out);
+const char *biref_method_name(biref_method m);
+
+/* Numeric integration plan: sample wavelengths and per-band weights for N midpoint samples,
+ * normalised so that a flat spectrum gives exactly (1, 1, 1). Immutable, shareable. */
+typedef struct biref_numeric_plan biref_numeric_plan;
+
+biref_status biref_numeric_plan_create(const biref_spectral *sp, int samples, biref_numeric_plan **out);
+void biref_numeric_plan_destroy(biref_numeric_plan *plan);
+int biref_numeric_plan_samples(const biref_numeric_plan *plan);
+
+/* Numeric integration of the closed-form Jones matrices (no allocation). */
+void biref_spectrum_numeric(const biref_numeric_plan *plan, const biref_slab_state *st, biref_spectrum *out);
+
+/* The paper's analytic approximation (eqs. 20–26, m = 1) for all four input/output pairs,
+ * transmission and reflection (no allocation). */
+void biref_spectrum_analytic(const biref_spectral *sp, const biref_slab_state *st, biref_spectrum *out);
+
+/* S(cos(2 pi D / lambda), Λ_j) and S(sin(2 pi D / lambda), Λ_j) for an optical path
+ * difference D in nm, from the look-up table (negative D allowed: cos even, sin odd). */
+void biref_spectral_phase_integrals(const biref_spectral *sp, double opd_nm, double cos_int[3], double sin_int[3]);
+
+/* The same integrals by direct quadrature (slow; for tests and for checking the table). */
+void biref_spectral_phase_integrals_direct(const biref_spectral *sp, double opd_nm, double cos_int[3],
+                                           double sin_int[3]);
+
+/* Polarisation mixing of a spectrum for the paper's light model: incident light with
+ * fractions w_in[s], w_in[p] (incoherent), detected through an analyzer passing
+ * out_mask[s], out_mask[p] (1 = pass, 0 = block). xyz = sum w_in[i] out_mask[j] X[i][j]. */
+void biref_spectrum_mix(const double X[2][2][3], const double w_in[2], const double out_mask[2], double xyz[3]);
+
+/* General polarisation for numeric integration: incident coherency matrix C (s/p basis of the
+ * incident wave, C[i][j] = <e_i conj(e_j)>, trace = incident intensity) and analyzer Jones
+ * matrix P ([in][out] in the s/p basis of the outgoing wave; NULL = no analyzer). Detected
+ * intensity per wavelength = sum_{i,j,k} C[i][j] (J P)[i][k] conj((J P)[j][k]), integrated
+ * with the plan's weights. which = BIREF_TRANSMISSION or BIREF_REFLECTION. */
+void biref_spectrum_numeric_polarized(const biref_numeric_plan *plan, const biref_slab_state *st, int which,
+                                      const double complex C[2][2], const double complex P[2][2], double xyz[3]);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* BIREF_SPECTRAL_H */

@@ -3,5 +3,11 @@
 #define BIREF_CLI_COMMANDS_H
 
 int cmd_slab(int argc, char **argv);
+int cmd_spectrum(int argc, char **argv);
+int cmd_accuracy(int argc, char **argv);
+int cmd_render(int argc, char **argv);
+int cmd_diff(int argc, char **argv);
+int cmd_bench(int argc, char **argv);
+int cmd_figure(int argc, char **argv);
 
 #endif

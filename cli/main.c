@@ -10,6 +10,12 @@ static const struct {
     const char *summary;
 } commands[] = {
     {"slab", cmd_slab, "Jones matrices and power fractions of one slab at one wavelength"},
+    {"spectrum", cmd_spectrum, "colour (band integrals) of one slab: analytic, numeric or ground truth"},
+    {"accuracy", cmd_accuracy, "accuracy study: analytic vs ground truth (docs/ACCURACY.md)"},
+    {"render", cmd_render, "render a scene file to PNG"},
+    {"diff", cmd_diff, "CIEDE2000 difference map and statistics of two PNG images"},
+    {"bench", cmd_bench, "time the spectral integration methods on a scene"},
+    {"figure", cmd_figure, "regenerate the paper's figures and table 1"},
 };
 
 static void usage(FILE *f)

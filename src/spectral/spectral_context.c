@@ -1,0 +1,182 @@
+/* The spectral context: band-normalised colour-matching functions and the look-up table of
+ * S(cos(k D), Λ) and S(sin(k D), Λ) used by the analytic method (paper §5.2). */
+#include <complex.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "spectral/spectral_internal.h"
+
+/* Table resolution. Hermite interpolation of the demodulated F has error ~ (2 pi B h)^4 / 384
+ * with B = half the band width in 1/lambda (<= 6e-4 / nm for 380-700 nm): about 3e-6 at
+ * h = 50 nm. Beyond D_MAX the endpoint asymptotics are accurate to ~1e-5 (docs/PHYSICS.md). */
+#define TABLE_STEP_NM 50.0
+#define TABLE_D_MAX_NM 1.0e5
+/* Quadrature step for building the table: midpoint rule, whose error for e^{i phi} is the
+ * multiplicative factor 1 + (phi' h)^2 / 24; at D_MAX, phi' h <= 0.22 rad. */
+#define BUILD_DLAMBDA_NM 0.05
+/* Quadrature step for the direct (reference) evaluation. */
+#define DIRECT_DLAMBDA_NM 0.002
+
+void biref_spectral_config_default(biref_spectral_config *cfg)
+{
+    cfg->cmf = BIREF_CMF_CIE1931;
+    cfg->lambda_min_nm = BIREF_CMF_DEFAULT_LMIN_NM;
+    cfg->lambda_max_nm = BIREF_CMF_DEFAULT_LMAX_NM;
+}
+
+static const char *const METHOD_NAMES[] = {"analytic", "numeric", "ground-truth"};
+
+biref_status biref_method_from_name(const char *name, biref_method *out)
+{
+    if (!name || !out) return BIREF_ERR_INVALID;
+    for (int i = 0; i < 3; i++)
+        if (!strcmp(name, METHOD_NAMES[i])) {
+            *out = (biref_method)i;
+            return BIREF_OK;
+        }
+    return BIREF_ERR_INVALID;
+}
+
+const char *biref_method_name(biref_method m)
+{
+    return (m >= 0 && (int)m < 3) ? METHOD_NAMES[m] : NULL;
+}
+
+const biref_cmf_band *biref_spectral_band(const biref_spectral *sp) { return &sp->band; }
+
+static void build_table(biref_spectral *sp)
+{
+    const double lmin = sp->cfg.lambda_min_nm, lmax = sp->cfg.lambda_max_nm;
+    const int n = (int)ceil((lmax - lmin) / BUILD_DLAMBDA_NM);
+    const double dl = (lmax - lmin) / n;
+    for (int i = 0; i < n; i++) {
+        double lambda = lmin + (i + 0.5) * dl, lam[3];
+        biref_cmf_band_eval(&sp->band, lambda, lam);
+        double f = 1.0 / lambda - sp->nu_c;     /* demodulated frequency of this sample */
+        double complex rot = cexp(2.0 * M_PI * I * f * sp->step), z = 1.0;
+        double complex dz = 2.0 * M_PI * I * f; /* d/dD of e^{2 pi i f D} is dz times it */
+        for (int m = 0; m < sp->nodes; m++) {
+            double *row = sp->table + (size_t)m * 12;
+            double complex zd = dz * z;
+            for (int j = 0; j < 3; j++) {
+                double w = lam[j] * dl;
+                row[4 * j + 0] += w * creal(z);
+                row[4 * j + 1] += w * cimag(z);
+                row[4 * j + 2] += w * creal(zd);
+                row[4 * j + 3] += w * cimag(zd);
+            }
+            z *= rot;
+        }
+    }
+}
+
+biref_status biref_spectral_create(const biref_spectral_config *cfg_in, biref_spectral **out)
+{
+    if (!out) return BIREF_ERR_INVALID;
+    *out = NULL;
+    biref_spectral_config cfg;
+    if (cfg_in)
+        cfg = *cfg_in;
+    else
+        biref_spectral_config_default(&cfg);
+    if (!isfinite(cfg.lambda_min_nm) || !isfinite(cfg.lambda_max_nm) || cfg.lambda_min_nm <= 0.0 ||
+        cfg.lambda_max_nm <= cfg.lambda_min_nm)
+        return BIREF_ERR_INVALID;
+    biref_spectral *sp = calloc(1, sizeof *sp);
+    if (!sp) return BIREF_ERR_NOMEM;
+    sp->cfg = cfg;
+    biref_status s = biref_cmf_band_init(&sp->band, cfg.cmf, cfg.lambda_min_nm, cfg.lambda_max_nm);
+    if (s != BIREF_OK) {
+        free(sp);
+        return s;
+    }
+    sp->nu_c = 0.5 * (1.0 / cfg.lambda_min_nm + 1.0 / cfg.lambda_max_nm);
+    sp->step = TABLE_STEP_NM;
+    sp->nodes = (int)(TABLE_D_MAX_NM / TABLE_STEP_NM) + 1;
+    sp->d_max = (sp->nodes - 1) * sp->step;
+    sp->table = calloc((size_t)sp->nodes * 12, sizeof *sp->table);
+    if (!sp->table) {
+        free(sp);
+        return BIREF_ERR_NOMEM;
+    }
+    build_table(sp);
+    double lo[3], hi[3];
+    biref_cmf_band_eval(&sp->band, cfg.lambda_min_nm, lo);
+    biref_cmf_band_eval(&sp->band, cfg.lambda_max_nm, hi);
+    for (int j = 0; j < 3; j++) {
+        sp->edge_lo[j] = lo[j] * cfg.lambda_min_nm * cfg.lambda_min_nm;
+        sp->edge_hi[j] = hi[j] * cfg.lambda_max_nm * cfg.lambda_max_nm;
+    }
+    /* Wavenumber centroids by the same fine midpoint rule. */
+    const int n = (int)ceil((cfg.lambda_max_nm - cfg.lambda_min_nm) / BUILD_DLAMBDA_NM);
+    const double dl = (cfg.lambda_max_nm - cfg.lambda_min_nm) / n;
+    for (int i = 0; i < n; i++) {
+        double lambda = cfg.lambda_min_nm + (i + 0.5) * dl, lam[3];
+        biref_cmf_band_eval(&sp->band, lambda, lam);
+        for (int j = 0; j < 3; j++) sp->k_centroid[j] += lam[j] * dl * 2.0 * M_PI / lambda;
+    }
+    *out = sp;
+    return BIREF_OK;
+}
+
+void biref_spectral_destroy(biref_spectral *sp)
+{
+    if (!sp) return;
+    free(sp->table);
+    free(sp);
+}
+
+void biref_spectral_phase_integrals(const biref_spectral *sp, double opd, double c[3], double s[3])
+{
+    double sign = 1.0;
+    if (opd < 0.0) {
+        opd = -opd;
+        sign = -1.0; /* cos is even in D, sin odd */
+    }
+    if (!(opd <= sp->d_max)) {
+        /* Endpoint asymptotics (integration by parts once; next term is O(1/D^2)). */
+        double complex e = I / (2.0 * M_PI * opd);
+        double complex ph_hi = cexp(2.0 * M_PI * I * opd / sp->cfg.lambda_max_nm);
+        double complex ph_lo = cexp(2.0 * M_PI * I * opd / sp->cfg.lambda_min_nm);
+        for (int j = 0; j < 3; j++) {
+            double complex v = e * (sp->edge_hi[j] * ph_hi - sp->edge_lo[j] * ph_lo);
+            c[j] = creal(v);
+            s[j] = sign * cimag(v);
+        }
+        return;
+    }
+    double x = opd / sp->step;
+    int m = (int)x;
+    if (m >= sp->nodes - 1) m = sp->nodes - 2;
+    double t = x - m, t2 = t * t, t3 = t2 * t;
+    /* Cubic Hermite basis. */
+    double h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + t, h01 = -2 * t3 + 3 * t2, h11 = t3 - t2;
+    const double *a = sp->table + (size_t)m * 12, *b = a + 12;
+    double complex carrier = cexp(2.0 * M_PI * I * sp->nu_c * opd);
+    for (int j = 0; j < 3; j++) {
+        double re = h00 * a[4 * j] + h10 * sp->step * a[4 * j + 2] + h01 * b[4 * j] + h11 * sp->step * b[4 * j + 2];
+        double im = h00 * a[4 * j + 1] + h10 * sp->step * a[4 * j + 3] + h01 * b[4 * j + 1] +
+                    h11 * sp->step * b[4 * j + 3];
+        double complex v = carrier * (re + I * im);
+        c[j] = creal(v);
+        s[j] = sign * cimag(v);
+    }
+}
+
+void biref_spectral_phase_integrals_direct(const biref_spectral *sp, double opd, double c[3], double s[3])
+{
+    const double lmin = sp->cfg.lambda_min_nm, lmax = sp->cfg.lambda_max_nm;
+    const int n = (int)ceil((lmax - lmin) / DIRECT_DLAMBDA_NM);
+    const double dl = (lmax - lmin) / n;
+    for (int j = 0; j < 3; j++) c[j] = s[j] = 0.0;
+    for (int i = 0; i < n; i++) {
+        double lambda = lmin + (i + 0.5) * dl, lam[3];
+        biref_cmf_band_eval(&sp->band, lambda, lam);
+        double ph = 2.0 * M_PI * opd / lambda, cp = cos(ph), spn = sin(ph);
+        for (int j = 0; j < 3; j++) {
+            c[j] += lam[j] * dl * cp;
+            s[j] += lam[j] * dl * spn;
+        }
+    }
+}

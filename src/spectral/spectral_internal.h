@@ -1,0 +1,33 @@
+/* Internal layout of the spectral context and numeric plans. */
+#ifndef BIREF_SPECTRAL_INTERNAL_H
+#define BIREF_SPECTRAL_INTERNAL_H
+
+#include "biref/spectral.h"
+
+struct biref_spectral {
+    biref_spectral_config cfg;
+    biref_cmf_band band;
+    /* Look-up table of F_j(D) = e^{-2 pi i D nu_c} S(e^{2 pi i D / lambda}, Λ_j) on D = m * step,
+     * m = 0..nodes-1, stored as [m][band][re, im, dre/dD, dim/dD] for cubic Hermite
+     * interpolation. Demodulating by the band-centre frequency nu_c leaves a function that
+     * varies on the scale 1 / (half the band's width in 1/lambda), so a coarse step suffices. */
+    double nu_c;
+    double step;
+    int nodes;
+    double d_max;
+    double *table;
+    /* Endpoint terms of the asymptotic expansion used beyond d_max (integration by parts):
+     * S(e^{ikD}) ~ i/(2 pi D) [Λ λ^2 e^{2 pi i D/λ}]_{λmin}^{λmax}. */
+    double edge_lo[3], edge_hi[3];
+    /* Band centroids of the wavenumber, S(2 pi / lambda, Λ_j): evanescent legs are attenuated
+     * with e^{-k_j Im(opl)} per band (dispersion of the decay ignored within a band). */
+    double k_centroid[3];
+};
+
+struct biref_numeric_plan {
+    int samples;
+    double *lambda;
+    double (*weight)[3]; /* sum over samples = 1 per band */
+};
+
+#endif

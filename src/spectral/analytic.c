@@ -30,20 +30,22 @@ static void phase_eval(const biref_spectral *sp, double complex opd, phase_int *
     for (int j = 0; j < 3; j++) p->att[j] = im != 0.0 ? exp(-sp->k_centroid[j] * im) : 1.0;
 }
 
-/* out_j += weight * S(Re(coef e^{ikD}), Λ_j). */
-static inline void add_re_integral(double out[3], double weight, double complex coef, const phase_int *p)
+/* out_j += weight_j * S(Re(coef e^{ikD}), Λ_j). */
+static inline void add_re_integral(double out[3], const double weight[3], double complex coef, const phase_int *p)
 {
     double a = creal(coef), b = cimag(coef);
-    for (int j = 0; j < 3; j++) out[j] += weight * p->att[j] * (a * p->c[j] - b * p->s[j]);
+    for (int j = 0; j < 3; j++) out[j] += weight[j] * p->att[j] * (a * p->c[j] - b * p->s[j]);
 }
+
+static const double ONE[3] = {1.0, 1.0, 1.0};
 
 static inline double abs2(double complex z) { return creal(z) * creal(z) + cimag(z) * cimag(z); }
 
-/* |e^{ik opl}|^2 at the band's centroid: 1 for propagating legs. */
-static inline double leg_energy(const biref_spectral *sp, double complex opl, int band)
+/* |e^{ik opl}|^2 per band at the band's centroid: 1 for propagating legs. */
+static inline void leg_energy(const biref_spectral *sp, double complex opl, double e[3])
 {
     double im = cimag(opl);
-    return im != 0.0 ? exp(-2.0 * sp->k_centroid[band] * im) : 1.0;
+    for (int j = 0; j < 3; j++) e[j] = im != 0.0 ? exp(-2.0 * sp->k_centroid[j] * im) : 1.0;
 }
 
 /* w (1x2) (I - M)^{-1}. */
@@ -55,7 +57,29 @@ static void row_times_inv_one_minus(const double w[2], const double M[2][2], dou
     out[1] = (-w[0] * b + w[1] * a) / det;
 }
 
-static void transmission(const biref_spectral *sp, const biref_slab_state *st, double out[2][2][3])
+/* Energy weights of all paths reaching a reflection point, per band (eqs. 20-21):
+ * w0[i][m][j] is the first arrival in mode m for input i, Rin/Rout the reflections of one
+ * round trip (mode m -> leg mode n via Rin, leg n, then Rout into mode m', leg m'), legs with
+ * energies e_mid[n][j], e_end[m'][j]. out[i][m][j] = w0 (I - Dbar_j)^{-1}. */
+static void path_energies(const double w0[2][2][3], const double complex (*Rin)[2], const double e_mid[2][3],
+                          const double complex (*Rout)[2], const double e_end[2][3], double out[2][2][3])
+{
+    for (int j = 0; j < 3; j++) {
+        double Dbar[2][2];
+        for (int m = 0; m < 2; m++)
+            for (int m2 = 0; m2 < 2; m2++)
+                Dbar[m][m2] = (abs2(Rin[m][0]) * e_mid[0][j] * abs2(Rout[0][m2]) +
+                               abs2(Rin[m][1]) * e_mid[1][j] * abs2(Rout[1][m2])) * e_end[m2][j];
+        for (int i = 0; i < 2; i++) {
+            double w[2] = {w0[i][0][j], w0[i][1][j]}, W[2];
+            row_times_inv_one_minus(w, Dbar, W);
+            out[i][0][j] = W[0];
+            out[i][1][j] = W[1];
+        }
+    }
+}
+
+static void transmission(const biref_spectral *sp, const biref_slab_state *st, double E[2][2][3], double H[2][2][3])
 {
     const double complex(*t01)[2] = st->top.t_down, (*r10)[2] = st->top.r_up;
     const double complex(*r12)[2] = st->bottom.r_down, (*t12)[2] = st->bottom.t_down;
@@ -68,46 +92,42 @@ static void transmission(const biref_spectral *sp, const biref_slab_state *st, d
     for (int y = 0; y < 2; y++)
         for (int x2 = 0; x2 < 2; x2++) phase_eval(sp, ou[y] + od[x2], &trip[y][x2]);
 
-    for (int j = 0; j < 3; j++) {
-        /* Energy of a round trip from the bottom in mode x back to the bottom in mode x' (eq. 20). */
-        double Dbar[2][2];
+    double ed[2][3], eu[2][3], w0[2][2][3], W[2][2][3];
+    for (int m = 0; m < 2; m++) leg_energy(sp, od[m], ed[m]), leg_energy(sp, ou[m], eu[m]);
+    for (int i = 0; i < 2; i++)
         for (int x = 0; x < 2; x++)
-            for (int x2 = 0; x2 < 2; x2++) {
-                double e = 0.0;
-                for (int y = 0; y < 2; y++)
-                    e += abs2(r12[x][y]) * leg_energy(sp, ou[y], j) * abs2(r10[y][x2]) * leg_energy(sp, od[x2], j);
-                Dbar[x][x2] = e;
-            }
+            for (int j = 0; j < 3; j++) w0[i][x][j] = abs2(t01[i][x]) * ed[x][j];
+    /* W[i][x]: energy of all paths arriving at the bottom in mode x (eq. 21's left part). */
+    path_energies(w0, r12, eu, r10, ed, W);
+
+    for (int o = 0; o < 2; o++) {
+        /* Descendant coefficients (eq. 23, m = 1) do not depend on the input. */
+        double complex desc[2][2][2];
+        for (int x = 0; x < 2; x++)
+            for (int y = 0; y < 2; y++)
+                for (int x2 = 0; x2 < 2; x2++) desc[x][y][x2] = conj(t12[x][o]) * r12[x][y] * r10[y][x2] * t12[x2][o];
         for (int i = 0; i < 2; i++) {
-            /* W[x]: energy of all paths arriving at the bottom in mode x (eq. 21's left part). */
-            double w0[2] = {abs2(t01[i][0]) * leg_energy(sp, od[0], j), abs2(t01[i][1]) * leg_energy(sp, od[1], j)};
-            double W[2];
-            row_times_inv_one_minus(w0, Dbar, W);
-            for (int o = 0; o < 2; o++) {
-                double E = W[0] * abs2(t12[0][o]) + W[1] * abs2(t12[1][o]); /* eq. 21 */
-                double H[3] = {0, 0, 0};
-                /* H0 (eq. 24): the ordinary and extraordinary order-0 paths. */
-                add_re_integral(H, 1.0, conj(t01[i][0] * t12[0][o]) * t01[i][1] * t12[1][o], &h0);
-                /* Descendants (eq. 23, m = 1). */
-                for (int x = 0; x < 2; x++)
-                    for (int y = 0; y < 2; y++)
-                        for (int x2 = 0; x2 < 2; x2++)
-                            add_re_integral(H, W[x], conj(t12[x][o]) * r12[x][y] * r10[y][x2] * t12[x2][o], &trip[y][x2]);
-                out[i][o][j] = E + 2.0 * H[j];
-            }
+            double *h = H[i][o];
+            h[0] = h[1] = h[2] = 0.0;
+            for (int j = 0; j < 3; j++) E[i][o][j] = W[i][0][j] * abs2(t12[0][o]) + W[i][1][j] * abs2(t12[1][o]);
+            /* H0 (eq. 24): the ordinary and the extraordinary order-0 path. */
+            add_re_integral(h, ONE, conj(t01[i][0] * t12[0][o]) * t01[i][1] * t12[1][o], &h0);
+            for (int x = 0; x < 2; x++)
+                for (int y = 0; y < 2; y++)
+                    for (int x2 = 0; x2 < 2; x2++) add_re_integral(h, W[i][x], desc[x][y][x2], &trip[y][x2]);
         }
     }
 }
 
-static void reflection(const biref_spectral *sp, const biref_slab_state *st, double out[2][2][3])
+static void reflection(const biref_spectral *sp, const biref_slab_state *st, double E[2][2][3], double H[2][2][3])
 {
     const double complex(*r01)[2] = st->top.r_down, (*t01)[2] = st->top.t_down;
     const double complex(*r10)[2] = st->top.r_up, (*t10)[2] = st->top.t_up;
     const double complex(*r12)[2] = st->bottom.r_down;
     const double complex *od = st->opl_down, *ou = st->opl_up;
 
-    /* Order-1 paths (down x, up y): optical paths and pairwise differences; the same four
-     * sums serve as the extra round trip (down x', up y') of the descendants. */
+    /* Order-1 paths a = (down x, up y) = (a >> 1, a & 1): optical paths and pairwise
+     * differences; the same four sums serve as the extra round trip of the descendants. */
     double complex opl1[4];
     phase_int p1[4], pair[4][4];
     for (int a = 0; a < 4; a++) {
@@ -117,45 +137,54 @@ static void reflection(const biref_spectral *sp, const biref_slab_state *st, dou
     for (int a = 0; a < 4; a++)
         for (int b = a + 1; b < 4; b++) phase_eval(sp, opl1[b] - conj(opl1[a]), &pair[a][b]);
 
-    for (int j = 0; j < 3; j++) {
-        /* Round trip from the top (inside, up mode y) back to the top in mode y'. */
-        double Dbar[2][2];
+    double ed[2][3], eu[2][3], u0[2][2][3], U[2][2][3];
+    for (int m = 0; m < 2; m++) leg_energy(sp, od[m], ed[m]), leg_energy(sp, ou[m], eu[m]);
+    for (int i = 0; i < 2; i++)
         for (int y = 0; y < 2; y++)
-            for (int y2 = 0; y2 < 2; y2++) {
-                double e = 0.0;
-                for (int x = 0; x < 2; x++)
-                    e += abs2(r10[y][x]) * leg_energy(sp, od[x], j) * abs2(r12[x][y2]) * leg_energy(sp, ou[y2], j);
-                Dbar[y][y2] = e;
-            }
+            for (int j = 0; j < 3; j++)
+                u0[i][y][j] = (abs2(t01[i][0]) * ed[0][j] * abs2(r12[0][y]) + abs2(t01[i][1]) * ed[1][j] * abs2(r12[1][y])) *
+                              eu[y][j];
+    /* U[i][y]: energy of all paths arriving at the top (inside) in up mode y. */
+    path_energies(u0, r10, ed, r12, eu, U);
+
+    for (int o = 0; o < 2; o++) {
+        double complex desc[2][4];
+        for (int y = 0; y < 2; y++)
+            for (int a = 0; a < 4; a++) desc[y][a] = conj(t10[y][o]) * r10[y][a >> 1] * r12[a >> 1][a & 1] * t10[a & 1][o];
         for (int i = 0; i < 2; i++) {
-            double u0[2] = {0, 0};
-            for (int y = 0; y < 2; y++)
-                for (int x = 0; x < 2; x++)
-                    u0[y] += abs2(t01[i][x]) * leg_energy(sp, od[x], j) * abs2(r12[x][y]) * leg_energy(sp, ou[y], j);
-            double U[2];
-            row_times_inv_one_minus(u0, Dbar, U);
-            for (int o = 0; o < 2; o++) {
-                double E = abs2(r01[i][o]) + U[0] * abs2(t10[0][o]) + U[1] * abs2(t10[1][o]);
-                double complex a1[4]; /* amplitudes of the order-1 paths without phase */
-                for (int a = 0; a < 4; a++) a1[a] = t01[i][a >> 1] * r12[a >> 1][a & 1] * t10[a & 1][o];
-                double H[3] = {0, 0, 0};
-                for (int a = 0; a < 4; a++) {
-                    add_re_integral(H, 1.0, conj(r01[i][o]) * a1[a], &p1[a]);
-                    for (int b = a + 1; b < 4; b++) add_re_integral(H, 1.0, conj(a1[a]) * a1[b], &pair[a][b]);
-                }
-                for (int y = 0; y < 2; y++)
-                    for (int a = 0; a < 4; a++) {
-                        int x2 = a >> 1, y2 = a & 1;
-                        add_re_integral(H, U[y], conj(t10[y][o]) * r10[y][x2] * r12[x2][y2] * t10[y2][o], &p1[a]);
-                    }
-                out[i][o][j] = E + 2.0 * H[j];
+            double *h = H[i][o];
+            h[0] = h[1] = h[2] = 0.0;
+            for (int j = 0; j < 3; j++)
+                E[i][o][j] = abs2(r01[i][o]) + U[i][0][j] * abs2(t10[0][o]) + U[i][1][j] * abs2(t10[1][o]);
+            double complex a1[4]; /* order-1 amplitudes without their phase */
+            for (int a = 0; a < 4; a++) a1[a] = t01[i][a >> 1] * r12[a >> 1][a & 1] * t10[a & 1][o];
+            for (int a = 0; a < 4; a++) {
+                add_re_integral(h, ONE, conj(r01[i][o]) * a1[a], &p1[a]);
+                for (int b = a + 1; b < 4; b++) add_re_integral(h, ONE, conj(a1[a]) * a1[b], &pair[a][b]);
             }
+            for (int y = 0; y < 2; y++)
+                for (int a = 0; a < 4; a++) add_re_integral(h, U[i][y], desc[y][a], &p1[a]);
         }
     }
 }
 
+void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
+                          double H[2][2][3])
+{
+    if (which == BIREF_REFLECTION)
+        reflection(sp, st, E, H);
+    else
+        transmission(sp, st, E, H);
+}
+
 void biref_spectrum_analytic(const biref_spectral *sp, const biref_slab_state *st, biref_spectrum *out)
 {
-    transmission(sp, st, out->T);
-    reflection(sp, st, out->R);
+    double E[2][2][3], H[2][2][3];
+    for (int which = 0; which < 2; which++) {
+        biref_analytic_terms(sp, st, which, E, H);
+        double(*X)[2][3] = which == BIREF_REFLECTION ? out->R : out->T;
+        for (int i = 0; i < 2; i++)
+            for (int o = 0; o < 2; o++)
+                for (int j = 0; j < 3; j++) X[i][o][j] = E[i][o][j] + 2.0 * H[i][o][j]; /* eqs. 25-26 */
+    }
 }

@@ -30,4 +30,9 @@ struct biref_numeric_plan {
     double (*weight)[3]; /* sum over samples = 1 per band */
 };
 
+/* The two terms of the analytic approximation, S(|J|^2) ~ E + 2 H (eqs. 19, 25), for
+ * which = BIREF_TRANSMISSION or BIREF_REFLECTION, indexed [in][out][band]. */
+void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
+                          double H[2][2][3]);
+
 #endif

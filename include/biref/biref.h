@@ -17,5 +17,6 @@
 #include "biref/optics.h"
 #include "biref/color.h"
 #include "biref/spectral.h"
+#include "biref/render.h"
 
 #endif /* BIREF_BIREF_H */

@@ -1,0 +1,202 @@
+/*
+ * biref — a small ray caster for scenes of thin uniaxial slabs (scene files, rendering,
+ * image I/O). Scene schema and frames: docs/SCENES.md.
+ *
+ * Per pixel: one perspective ray, the nearest slab it hits (a thin rectangle; lateral
+ * offsets inside the slab ignored) and two spectral evaluations of that slab, one for
+ * light transmitted from behind and one for light reflected from the camera side, each
+ * in the paper's frame for that ray (docs/SCENES.md, "Frames").
+ *
+ * No global state. A biref_scene is plain data; a biref_renderer is immutable after
+ * creation and may be used by several threads (it renders rows in parallel itself).
+ */
+#ifndef BIREF_RENDER_H
+#define BIREF_RENDER_H
+
+#include <stdio.h>
+
+#include "biref/common.h"
+#include "biref/spectral.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Fixed capacities keep a scene plain data (copyable, no ownership rules). */
+#define BIREF_SCENE_MAX_SLABS 32
+#define BIREF_SCENE_MAX_PANELS 16
+/* Largest accepted image side and pixel count (a 16k x 16k float image is 3 GiB). */
+#define BIREF_SCENE_MAX_SIDE 16384
+#define BIREF_SCENE_MAX_PIXELS (8192L * 8192L)
+
+typedef struct {
+    double position[3], look_at[3], up[3];
+    double fov_deg;  /* vertical field of view, (0, 179] */
+    int width, height;
+    double exposure; /* multiplies every pixel's XYZ before encoding (default 1) */
+} biref_camera;
+
+typedef struct {
+    double center[3];
+    double size[2];     /* extent along tangent, along normal x tangent (scene units) */
+    double normal[3];   /* unit; local +y */
+    double tangent[3];  /* unit, orthogonal to normal; local +x */
+    double axis[3];     /* optic axis in the local frame (x = tangent, y = normal, z = x cross y), unit */
+    double eta_o, eta_e;
+    double thickness_nm;
+} biref_scene_slab;
+
+/* An emitting rectangle (both faces), seen along rays that leave a slab or the camera. */
+typedef struct {
+    double center[3];
+    double size[2];
+    double normal[3], tangent[3]; /* unit, orthogonal */
+    double radiance[3];           /* linear sRGB, (1,1,1) = white E of unit radiance */
+} biref_panel;
+
+typedef enum { BIREF_ENV_GRADIENT = 0, BIREF_ENV_CHECKER = 1 } biref_env_type;
+
+typedef struct {
+    biref_env_type type;
+    double up[3];                           /* unit */
+    double zenith[3], horizon[3], ground[3]; /* linear sRGB radiances */
+    double check_a[3], check_b[3];          /* checker: the two ground tile radiances */
+    double check_size;                      /* checker: tile size, in units of the ground's depth below the eye */
+} biref_environment;
+
+typedef enum { BIREF_POL_UNPOLARIZED = 0, BIREF_POL_SP = 1, BIREF_POL_LINEAR = 2 } biref_pol_type;
+
+typedef struct {
+    biref_pol_type type;
+    double s, p;          /* BIREF_POL_SP: fractions, normalised to s + p = 1 */
+    double direction[3];  /* BIREF_POL_LINEAR: world-fixed polarizer axis, unit */
+} biref_polarization;
+
+typedef enum { BIREF_FILTER_NONE = 0, BIREF_FILTER_S = 1, BIREF_FILTER_P = 2, BIREF_FILTER_LINEAR = 3 } biref_filter_type;
+
+typedef struct {
+    biref_filter_type type;
+    double direction[3]; /* BIREF_FILTER_LINEAR: world-fixed analyzer axis, unit */
+} biref_filter;
+
+typedef struct {
+    biref_camera camera;
+    double eta_medium; /* surrounding index, both sides of every slab */
+    int n_slabs;
+    biref_scene_slab slabs[BIREF_SCENE_MAX_SLABS];
+    int n_panels;
+    biref_panel panels[BIREF_SCENE_MAX_PANELS];
+    biref_environment env;
+    biref_polarization polarization;
+    biref_filter filter;
+} biref_scene;
+
+/* Parses a scene (JSON text of len bytes, need not be NUL-terminated) and validates it.
+ * On failure returns BIREF_ERR_INVALID and writes one line "FIELD: reason" into msg,
+ * FIELD being the JSON path (e.g. "slabs[0].thickness_mm"). Vectors are normalised,
+ * tangents orthogonalised, thickness converted to nm. */
+biref_status biref_scene_parse(const char *text, size_t len, biref_scene *out, char *msg, size_t msg_len);
+
+/* Reads and parses a file; msg is "FIELD: reason" as above, or "cannot read: ..."
+ * with BIREF_ERR_IO. */
+biref_status biref_scene_load(const char *path, biref_scene *out, char *msg, size_t msg_len);
+
+/* Checks a scene built or modified in code (the same checks as biref_scene_parse, on
+ * already-normalised data, with the same field names). */
+biref_status biref_scene_validate(const biref_scene *scene, char *msg, size_t msg_len);
+
+/* ------------------------------------------------------------------------ */
+/* Rendering                                                                 */
+/* ------------------------------------------------------------------------ */
+
+typedef struct {
+    biref_method method;
+    int samples; /* BIREF_METHOD_NUMERIC: spectral samples (default 64); ignored otherwise */
+    int threads; /* OpenMP threads; 0 = the OpenMP default */
+} biref_render_options;
+
+void biref_render_options_default(biref_render_options *opt);
+
+typedef struct biref_renderer biref_renderer;
+
+/* Precomputes everything per scene (spectral tables, numeric plan, per-slab frames).
+ * BIREF_ERR_INVALID with a one-line msg if the scene is invalid or the method cannot
+ * handle its polarizers (world-fixed polarizers need a numeric method). */
+biref_status biref_renderer_create(const biref_scene *scene, const biref_render_options *opt,
+                                   biref_renderer **out, char *msg, size_t msg_len);
+void biref_renderer_destroy(biref_renderer *r);
+
+/* Called after each finished row, from inside the parallel loop but serialised
+ * (never concurrently); rows_done counts the rows finished so far. */
+typedef void (*biref_progress_fn)(void *user, int rows_done, int rows_total);
+
+typedef struct {
+    long pixels;         /* pixels shaded */
+    long slab_pixels;    /* of which hit a slab */
+    long fallback_evals; /* slab evaluations that failed and used the fallback (no transmission, full reflection) */
+} biref_render_stats;
+
+/* Renders rows y_begin, y_begin + y_step, ... < y_end into xyz (the full image,
+ * width * height * 3 floats, row-major from the top; rows not rendered are untouched).
+ * XYZ is band-normalised (white E = (1,1,1)) and already multiplied by the exposure.
+ * Deterministic: every pixel is independent of the thread count. No allocation per
+ * pixel. stats and progress may be NULL. */
+biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_end, int y_step, float *xyz,
+                                   biref_progress_fn progress, void *progress_user, biref_render_stats *stats);
+
+/* Convenience: the whole image. */
+biref_status biref_render_image(const biref_renderer *r, float *xyz, biref_progress_fn progress,
+                                void *progress_user, biref_render_stats *stats);
+
+int biref_renderer_width(const biref_renderer *r);
+int biref_renderer_height(const biref_renderer *r);
+
+/* ------------------------------------------------------------------------ */
+/* Images                                                                    */
+/* ------------------------------------------------------------------------ */
+
+/* XYZ floats (3 per pixel) -> 8-bit encoded sRGB (clamped, NaN -> 0) / linear sRGB floats. */
+void biref_xyz_image_to_srgb8(const float *xyz, size_t n_pixels, unsigned char *rgb);
+void biref_xyz_image_to_linear_srgb(const float *xyz, size_t n_pixels, float *rgb);
+
+/* Writes 8-bit RGB (top row first) as a PNG with an sRGB chunk. The file is written to
+ * a temporary name in the same directory and renamed, so a failure leaves nothing behind.
+ * BIREF_ERR_IO with a one-line msg on failure. */
+biref_status biref_png_write_rgb8(const char *path, int width, int height, const unsigned char *rgb, char *msg,
+                                  size_t msg_len);
+
+/* Reads any PNG as 8-bit sRGB RGB (alpha composited on black); *rgb is malloc'ed. */
+biref_status biref_png_read_rgb8(const char *path, int *width, int *height, unsigned char **rgb, char *msg,
+                                 size_t msg_len);
+
+/* Writes linear RGB floats (top row first) as a colour PFM (little-endian, rows stored
+ * bottom to top as the format requires), atomically like biref_png_write_rgb8. */
+biref_status biref_pfm_write(const char *path, int width, int height, const float *rgb, char *msg, size_t msg_len);
+
+/* ------------------------------------------------------------------------ */
+/* Progress bar                                                              */
+/* ------------------------------------------------------------------------ */
+
+/* A textual progress bar with ETA, redrawn at most every 0.1 s on f (normally stderr).
+ * Usable directly as a biref_progress_fn (pass the bar as user). enabled = 0 makes every
+ * call a no-op. */
+typedef struct {
+    FILE *f;
+    int enabled;
+    double t_start, t_last;
+    int drawn;
+    char label[32];
+} biref_progress_bar;
+
+void biref_progress_bar_init(biref_progress_bar *bar, FILE *f, int enabled, const char *label);
+void biref_progress_bar_update(void *bar, int done, int total);
+void biref_progress_bar_finish(biref_progress_bar *bar);
+
+/* Monotonic wall clock in seconds. */
+double biref_wall_seconds(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* BIREF_RENDER_H */

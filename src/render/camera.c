@@ -1,0 +1,36 @@
+/* Pinhole camera: one ray through each pixel centre. */
+#include <math.h>
+
+#include "render/render_internal.h"
+#include "render/vec3.h"
+
+void render_camera_init(render_camera *c, const biref_camera *cam)
+{
+    double f[3], r[3], u[3];
+    v3_sub(cam->look_at, cam->position, f);
+    v3_normalize(f, f);
+    /* The scene validator rejects up parallel to the view, so the cross product is non-zero. */
+    v3_cross(f, cam->up, r);
+    v3_normalize(r, r);
+    v3_cross(r, f, u);
+    for (int i = 0; i < 3; i++) {
+        c->origin[i] = cam->position[i];
+        c->forward[i] = f[i];
+        c->right[i] = r[i];
+        c->up[i] = u[i];
+    }
+    c->width = cam->width;
+    c->height = cam->height;
+    /* fov_deg is vertical; square pixels fix the horizontal extent. */
+    c->tan_half_v = tan(0.5 * cam->fov_deg * M_PI / 180.0);
+    c->tan_half_h = c->tan_half_v * (double)cam->width / (double)cam->height;
+}
+
+void render_camera_ray(const render_camera *c, int x, int y, double dir[3])
+{
+    double sx = (2.0 * (x + 0.5) / c->width - 1.0) * c->tan_half_h;
+    double sy = (1.0 - 2.0 * (y + 0.5) / c->height) * c->tan_half_v;
+    double d[3];
+    for (int i = 0; i < 3; i++) d[i] = c->forward[i] + sx * c->right[i] + sy * c->up[i];
+    v3_normalize(d, dir);
+}

@@ -1,0 +1,180 @@
+/* Image conversion and files: PNG through libpng's simplified API, PFM written directly.
+ * Files are written under a temporary name in the target directory and renamed into place,
+ * so a failed write never leaves a partial file behind. */
+#include <errno.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <png.h>
+
+#include "biref/render.h"
+
+void biref_xyz_image_to_srgb8(const float *xyz, size_t n_pixels, unsigned char *rgb)
+{
+    for (size_t i = 0; i < n_pixels; i++) {
+        double c[3] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
+        biref_xyz_to_srgb8(c, rgb + 3 * i);
+    }
+}
+
+void biref_xyz_image_to_linear_srgb(const float *xyz, size_t n_pixels, float *rgb)
+{
+    for (size_t i = 0; i < n_pixels; i++) {
+        double c[3] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]}, l[3];
+        biref_xyz_to_linear_srgb(c, l);
+        for (int k = 0; k < 3; k++) rgb[3 * i + k] = (float)l[k];
+    }
+}
+
+static biref_status io_fail(char *msg, size_t msg_len, const char *path, const char *what, const char *why)
+{
+    if (msg && msg_len) snprintf(msg, msg_len, "%s: %s: %s", path, what, why);
+    return BIREF_ERR_IO;
+}
+
+/* Opens "<path>.tmpXXXXXX" beside the target. */
+static FILE *open_temp(const char *path, char **tmp_out, char *msg, size_t msg_len)
+{
+    size_t n = strlen(path);
+    char *tmp = malloc(n + 12);
+    if (!tmp) {
+        io_fail(msg, msg_len, path, "cannot write", "out of memory");
+        return NULL;
+    }
+    memcpy(tmp, path, n);
+    memcpy(tmp + n, ".tmpXXXXXX", 11);
+    int fd = mkstemp(tmp);
+    if (fd < 0) {
+        io_fail(msg, msg_len, path, "cannot write", strerror(errno));
+        free(tmp);
+        return NULL;
+    }
+    /* mkstemp creates 0600; an image is an ordinary, world-readable output file. */
+    (void)fchmod(fd, 0644);
+    FILE *f = fdopen(fd, "wb");
+    if (!f) {
+        io_fail(msg, msg_len, path, "cannot write", strerror(errno));
+        close(fd);
+        unlink(tmp);
+        free(tmp);
+        return NULL;
+    }
+    *tmp_out = tmp;
+    return f;
+}
+
+/* Closes f and renames tmp to path when ok; otherwise removes tmp. */
+static biref_status commit_temp(FILE *f, char *tmp, const char *path, int ok, const char *why, char *msg,
+                                size_t msg_len)
+{
+    biref_status s = BIREF_OK;
+    if (ok && fflush(f) != 0) {
+        ok = 0;
+        why = strerror(errno);
+    }
+    if (fclose(f) != 0 && ok) {
+        ok = 0;
+        why = strerror(errno);
+    }
+    if (ok && rename(tmp, path) != 0) {
+        ok = 0;
+        why = strerror(errno);
+    }
+    if (!ok) {
+        s = io_fail(msg, msg_len, path, "cannot write", why ? why : "write failed");
+        unlink(tmp);
+    }
+    free(tmp);
+    return s;
+}
+
+biref_status biref_png_write_rgb8(const char *path, int width, int height, const unsigned char *rgb, char *msg,
+                                  size_t msg_len)
+{
+    if (!path || !rgb || width < 1 || height < 1) return io_fail(msg, msg_len, path ? path : "(null)", "cannot write", "bad image");
+    char *tmp = NULL;
+    FILE *f = open_temp(path, &tmp, msg, msg_len);
+    if (!f) return BIREF_ERR_IO;
+    png_image img;
+    memset(&img, 0, sizeof img);
+    img.version = PNG_IMAGE_VERSION;
+    img.width = (png_uint_32)width;
+    img.height = (png_uint_32)height;
+    /* 8-bit, no PNG_IMAGE_FLAG_COLORSPACE_NOT_sRGB: libpng writes the sRGB chunk. */
+    img.format = PNG_FORMAT_RGB;
+    int ok = png_image_write_to_stdio(&img, f, 0, rgb, 0, NULL);
+    char why[160];
+    snprintf(why, sizeof why, "%s", ok ? "" : img.message);
+    png_image_free(&img);
+    return commit_temp(f, tmp, path, ok, why, msg, msg_len);
+}
+
+biref_status biref_png_read_rgb8(const char *path, int *width, int *height, unsigned char **rgb, char *msg,
+                                 size_t msg_len)
+{
+    *rgb = NULL;
+    FILE *f = fopen(path, "rb");
+    if (!f) return io_fail(msg, msg_len, path, "cannot read", strerror(errno));
+    png_image img;
+    memset(&img, 0, sizeof img);
+    img.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_stdio(&img, f)) {
+        char why[160];
+        snprintf(why, sizeof why, "not a readable PNG (%s)", img.message);
+        png_image_free(&img);
+        fclose(f);
+        if (msg && msg_len) snprintf(msg, msg_len, "%s: %s", path, why);
+        return BIREF_ERR_INVALID;
+    }
+    if (img.width > BIREF_SCENE_MAX_SIDE || img.height > BIREF_SCENE_MAX_SIDE) {
+        png_image_free(&img);
+        fclose(f);
+        if (msg && msg_len) snprintf(msg, msg_len, "%s: image too large (%ux%u)", path, img.width, img.height);
+        return BIREF_ERR_INVALID;
+    }
+    img.format = PNG_FORMAT_RGB;
+    size_t size = PNG_IMAGE_SIZE(img);
+    /* calloc: an alpha channel is composited onto the buffer's contents, i.e. onto black. */
+    unsigned char *buf = calloc(size, 1);
+    if (!buf) {
+        png_image_free(&img);
+        fclose(f);
+        return io_fail(msg, msg_len, path, "cannot read", "out of memory");
+    }
+    if (!png_image_finish_read(&img, NULL, buf, 0, NULL)) {
+        char why[160];
+        snprintf(why, sizeof why, "corrupt PNG (%s)", img.message);
+        png_image_free(&img);
+        fclose(f);
+        free(buf);
+        if (msg && msg_len) snprintf(msg, msg_len, "%s: %s", path, why);
+        return BIREF_ERR_INVALID;
+    }
+    *width = (int)img.width;
+    *height = (int)img.height;
+    png_image_free(&img);
+    fclose(f);
+    *rgb = buf;
+    return BIREF_OK;
+}
+
+biref_status biref_pfm_write(const char *path, int width, int height, const float *rgb, char *msg, size_t msg_len)
+{
+    if (!path || !rgb || width < 1 || height < 1) return io_fail(msg, msg_len, path ? path : "(null)", "cannot write", "bad image");
+    char *tmp = NULL;
+    FILE *f = open_temp(path, &tmp, msg, msg_len);
+    if (!f) return BIREF_ERR_IO;
+    /* The scale's sign gives the byte order of the floats: negative = little-endian. */
+    const uint16_t probe = 1;
+    int little = *(const unsigned char *)&probe == 1;
+    int ok = fprintf(f, "PF\n%d %d\n%s\n", width, height, little ? "-1.0" : "1.0") > 0;
+    /* PFM stores the bottom row first. */
+    for (int y = height - 1; ok && y >= 0; y--)
+        ok = fwrite(rgb + (size_t)y * width * 3, sizeof(float), (size_t)width * 3, f) == (size_t)width * 3;
+    return commit_temp(f, tmp, path, ok, ok ? NULL : strerror(errno), msg, msg_len);
+}

@@ -1,0 +1,70 @@
+/* Internal layout of the renderer: everything per scene is precomputed here so that the
+ * per-pixel code does no allocation and no repeated normalisation. */
+#ifndef BIREF_RENDER_INTERNAL_H
+#define BIREF_RENDER_INTERNAL_H
+
+#include <complex.h>
+
+#include "biref/render.h"
+
+typedef struct {
+    double origin[3];
+    double forward[3], right[3], up[3]; /* orthonormal; right = forward x up_hint */
+    double tan_half_h, tan_half_v;      /* image plane half extents at unit distance */
+    int width, height;
+} render_camera;
+
+typedef struct {
+    double center[3], normal[3], tangent[3], bitangent[3]; /* bitangent = tangent x normal (local z) */
+    double half_w, half_h;
+    double axis_world[3]; /* optic axis in world coordinates, unit */
+    biref_slab base;      /* indices, thickness, eta_i; axis filled per ray */
+} render_slab;
+
+typedef struct {
+    double center[3], normal[3], tangent[3], bitangent[3];
+    double half_w, half_h;
+    double radiance_xyz[3];
+} render_panel;
+
+typedef struct {
+    biref_env_type type;
+    double up[3], e1[3], e2[3]; /* e1, e2 span the ground plane (checker) */
+    double zenith[3], horizon[3], ground[3], check_a[3], check_b[3]; /* XYZ */
+    double check_size;
+} render_env;
+
+struct biref_renderer {
+    biref_render_options opt;
+    render_camera cam;
+    int n_slabs, n_panels;
+    render_slab slabs[BIREF_SCENE_MAX_SLABS];
+    render_panel panels[BIREF_SCENE_MAX_PANELS];
+    render_env env;
+    double exposure;
+    /* Polarisation. world_fixed: the light or the filter is a world-fixed linear polarizer,
+     * so every ray needs its own coherency matrix / analyzer (numeric methods only). */
+    biref_polarization pol;
+    biref_filter filter;
+    int world_fixed;
+    double w_in[2], mask[2]; /* s/p light fractions and analyzer mask (paper's model) */
+    biref_spectral *sp;
+    biref_numeric_plan *plan; /* numeric and ground truth */
+};
+
+/* camera.c */
+void render_camera_init(render_camera *c, const biref_camera *cam);
+/* Unit direction through the centre of pixel (x, y), y = 0 at the top. */
+void render_camera_ray(const render_camera *c, int x, int y, double dir[3]);
+
+/* shade.c */
+void render_env_init(render_env *e, const biref_environment *env);
+/* Radiance (XYZ) arriving along the ray from `from` in direction dir: the nearest panel in
+ * front of `from`, else the environment. */
+void render_radiance(const biref_renderer *r, const double from[3], const double dir[3], double xyz[3]);
+/* The whole pixel: nearest slab hit, transmission and reflection, or the filtered
+ * background. Returns 1 if a slab was hit, and sets *fallback when a slab evaluation
+ * failed and the fallback was used. */
+int render_shade_pixel(const biref_renderer *r, const double dir[3], double xyz[3], int *fallback);
+
+#endif

@@ -1,0 +1,258 @@
+/* Per-pixel shading: environment and panels, the slab's two spectral evaluations in the paper's
+ * frame of each ray, and the polarisation bookkeeping. Frames and semantics: docs/SCENES.md. */
+#include <complex.h>
+#include <math.h>
+#include <string.h>
+
+#include "render/render_internal.h"
+#include "render/vec3.h"
+
+/* Rays leave surfaces from exactly on them; hits closer than this are the surface itself. */
+#define RAY_EPS 1e-9
+/* biref_slab_prepare needs theta < pi/2; a ray grazing the slab is clamped just below. */
+#define THETA_MAX (0.5 * M_PI - 1e-7)
+
+void render_env_init(render_env *e, const biref_environment *env)
+{
+    e->type = env->type;
+    memcpy(e->up, env->up, sizeof e->up);
+    double a[3] = {1, 0, 0};
+    if (fabs(e->up[0]) > 0.9) v3_set(a, 0, 0, 1);
+    v3_orthonormalize(a, e->up, e->e1);
+    v3_cross(e->up, e->e1, e->e2);
+    biref_linear_srgb_to_xyz(env->zenith, e->zenith);
+    biref_linear_srgb_to_xyz(env->horizon, e->horizon);
+    biref_linear_srgb_to_xyz(env->ground, e->ground);
+    biref_linear_srgb_to_xyz(env->check_a, e->check_a);
+    biref_linear_srgb_to_xyz(env->check_b, e->check_b);
+    e->check_size = env->check_size;
+}
+
+static void mix3(const double a[3], const double b[3], double t, double o[3])
+{
+    for (int i = 0; i < 3; i++) o[i] = a[i] + (b[i] - a[i]) * t;
+}
+
+static void env_radiance(const render_env *e, const double d[3], double xyz[3])
+{
+    double el = v3_dot(d, e->up);
+    if (el >= 0.0) {
+        /* sqrt keeps the sky pale near the horizon and saturated overhead. */
+        mix3(e->horizon, e->zenith, sqrt(fmin(el, 1.0)), xyz);
+        return;
+    }
+    /* Below the horizon the ground fades in over the first ~7 degrees; the haze also hides
+     * the checker's aliasing where its tiles shrink below a pixel. */
+    double g = fmin(1.0, -el * 8.0);
+    const double *ground = e->ground;
+    if (e->type == BIREF_ENV_CHECKER && g > 1e-3) {
+        /* The ground is a plane one unit below the eye; tiles are check_size units wide. */
+        double s = 1.0 / (-el * e->check_size);
+        double u = floor(v3_dot(d, e->e1) * s), w = floor(v3_dot(d, e->e2) * s);
+        ground = fabs(fmod(u + w, 2.0)) >= 1.0 ? e->check_b : e->check_a;
+    }
+    mix3(e->horizon, ground, g, xyz);
+}
+
+void render_radiance(const biref_renderer *r, const double from[3], const double dir[3], double xyz[3])
+{
+    double best = INFINITY;
+    const render_panel *hit = NULL;
+    for (int i = 0; i < r->n_panels; i++) {
+        const render_panel *p = &r->panels[i];
+        double dn = v3_dot(dir, p->normal);
+        if (fabs(dn) < 1e-12) continue;
+        double rel[3];
+        v3_sub(p->center, from, rel);
+        double t = v3_dot(rel, p->normal) / dn;
+        if (!(t > RAY_EPS) || t >= best) continue;
+        double q[3];
+        v3_axpy(from, t, dir, q);
+        v3_sub(q, p->center, q);
+        if (fabs(v3_dot(q, p->tangent)) <= p->half_w && fabs(v3_dot(q, p->bitangent)) <= p->half_h) {
+            best = t;
+            hit = p;
+        }
+    }
+    if (hit)
+        memcpy(xyz, hit->radiance_xyz, 3 * sizeof(double));
+    else
+        env_radiance(&r->env, dir, xyz);
+}
+
+/* Coherency matrix of the incident light in the basis (s, p_in) of a wave travelling along
+ * k_in. The paper's model (unpolarized, s/p fractions) is diagonal in every ray's own basis;
+ * a world-fixed polarizer projects its axis onto the wave's transverse plane, so light along
+ * the axis itself is blocked (the amplitude is the projection: Malus at oblique incidence). */
+static void light_coherency(const biref_renderer *r, const double s[3], const double p_in[3], double C[2][2])
+{
+    if (r->pol.type == BIREF_POL_LINEAR) {
+        double e[2] = {v3_dot(r->pol.direction, s), v3_dot(r->pol.direction, p_in)};
+        for (int i = 0; i < 2; i++)
+            for (int j = 0; j < 2; j++) C[i][j] = e[i] * e[j];
+    } else {
+        C[0][0] = r->w_in[0];
+        C[1][1] = r->w_in[1];
+        C[0][1] = C[1][0] = 0.0;
+    }
+}
+
+/* Analyzer Jones matrix [in][out] in the outgoing wave's basis (s, p_out); a world-fixed
+ * analyzer is the projector onto its axis' transverse part. */
+static void analyzer(const biref_renderer *r, const double s[3], const double p_out[3], double P[2][2])
+{
+    if (r->filter.type == BIREF_FILTER_LINEAR) {
+        double a[2] = {v3_dot(r->filter.direction, s), v3_dot(r->filter.direction, p_out)};
+        for (int i = 0; i < 2; i++)
+            for (int j = 0; j < 2; j++) P[i][j] = a[i] * a[j];
+    } else {
+        P[0][0] = r->mask[0];
+        P[1][1] = r->mask[1];
+        P[0][1] = P[1][0] = 0.0;
+    }
+}
+
+/* Intensity of the light passed unchanged (no slab) through the analyzer:
+ * sum_{i,j,k} C[i][j] P[i][k] P[j][k]. */
+static double passthrough(const double C[2][2], const double P[2][2])
+{
+    double f = 0.0;
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++)
+            for (int k = 0; k < 2; k++) f += C[i][j] * P[i][k] * P[j][k];
+    return f;
+}
+
+/* One spectral evaluation of a slab in a ray's paper frame (x, y, z given in world
+ * coordinates), for light arriving along k_in and leaving along k_out. which selects
+ * transmission or reflection. Returns 0 on success; non-zero leaves xyz undefined. */
+static int eval_slab(const biref_renderer *r, const render_slab *sl, double theta, const double x[3],
+                     const double y[3], const double z[3], const double k_in[3], const double k_out[3], int which,
+                     double xyz[3])
+{
+    biref_slab slab = sl->base;
+    slab.axis[0] = v3_dot(sl->axis_world, x);
+    slab.axis[1] = v3_dot(sl->axis_world, y);
+    slab.axis[2] = v3_dot(sl->axis_world, z);
+    biref_slab_state st;
+    if (biref_slab_prepare(&slab, theta, &st) != BIREF_OK) return 1;
+    if (!r->world_fixed) {
+        biref_spectrum spec;
+        if (r->opt.method == BIREF_METHOD_ANALYTIC)
+            biref_spectrum_analytic(r->sp, &st, &spec);
+        else
+            biref_spectrum_numeric(r->plan, &st, &spec);
+        biref_spectrum_mix(which == BIREF_TRANSMISSION ? spec.T : spec.R, r->w_in, r->mask, xyz);
+    } else {
+        /* s = x for both waves (convention: s is the frame's x), p = k x s for each. */
+        double p_in[3], p_out[3], Cr[2][2], Pr[2][2];
+        v3_cross(k_in, x, p_in);
+        v3_cross(k_out, x, p_out);
+        light_coherency(r, x, p_in, Cr);
+        analyzer(r, x, p_out, Pr);
+        double complex C[2][2], P[2][2];
+        for (int i = 0; i < 2; i++)
+            for (int j = 0; j < 2; j++) {
+                C[i][j] = Cr[i][j];
+                P[i][j] = Pr[i][j];
+            }
+        biref_spectrum_numeric_polarized(r->plan, &st, which, C, r->filter.type == BIREF_FILTER_NONE ? NULL : P,
+                                         xyz);
+    }
+    return !(isfinite(xyz[0]) && isfinite(xyz[1]) && isfinite(xyz[2]));
+}
+
+/* The pass-through factor for a wave along k (no slab), in the basis whose s is
+ * perpendicular to the plane containing k and n (the slab normal), as in the paper's light
+ * model; k parallel to n falls back to the slab's tangent. */
+static double background_factor(const biref_renderer *r, const double k[3], const render_slab *sl)
+{
+    double s[3], p[3];
+    v3_cross(k, sl->normal, s);
+    if (v3_normalize(s, s) < 1e-9 && v3_orthonormalize(sl->tangent, k, s)) {
+        /* k is parallel to both the normal and the tangent: impossible for an orthonormal pair. */
+        v3_set(s, 1, 0, 0);
+    }
+    v3_cross(k, s, p);
+    double C[2][2], P[2][2];
+    light_coherency(r, s, p, C);
+    analyzer(r, s, p, P);
+    return passthrough(C, P);
+}
+
+int render_shade_pixel(const biref_renderer *r, const double dir[3], double xyz[3], int *fallback)
+{
+    *fallback = 0;
+    const double *o = r->cam.origin;
+    double best = INFINITY;
+    const render_slab *hit = NULL;
+    for (int i = 0; i < r->n_slabs; i++) {
+        const render_slab *sl = &r->slabs[i];
+        double dn = v3_dot(dir, sl->normal);
+        if (fabs(dn) < 1e-12) continue; /* edge-on: a thin slab is invisible */
+        double rel[3];
+        v3_sub(sl->center, o, rel);
+        double t = v3_dot(rel, sl->normal) / dn;
+        if (!(t > RAY_EPS) || t >= best) continue;
+        double q[3];
+        v3_axpy(o, t, dir, q);
+        v3_sub(q, sl->center, q);
+        if (fabs(v3_dot(q, sl->tangent)) <= sl->half_w && fabs(v3_dot(q, sl->bitangent)) <= sl->half_h) {
+            best = t;
+            hit = sl;
+        }
+    }
+    double k_view[3]; /* light reaching the eye travels against the view ray */
+    v3_scale(dir, -1.0, k_view);
+    if (!hit) {
+        double L[3];
+        render_radiance(r, o, dir, L);
+        double f = background_factor(r, k_view, &r->slabs[0]);
+        v3_scale(L, f, xyz);
+        return 0;
+    }
+
+    double hp[3];
+    v3_axpy(o, best, dir, hp);
+    double dn = v3_dot(dir, hit->normal);
+    double theta = acos(fmin(1.0, fabs(dn)));
+    if (theta > THETA_MAX) theta = THETA_MAX;
+    /* Paper frame of this ray. Transmission: y = normal pointing away from the camera
+     * (towards the light behind), z = tangential part of the view ray, x = y x z. The
+     * reflection frame has y towards the camera and the same z, hence x_R = -x_T. */
+    double yT[3], yR[3], z[3], xT[3], xR[3];
+    v3_scale(hit->normal, dn < 0 ? -1.0 : 1.0, yT);
+    v3_scale(yT, -1.0, yR);
+    v3_axpy(dir, -dn, hit->normal, z);
+    if (v3_normalize(z, z) < 1e-9) memcpy(z, hit->tangent, sizeof z);
+    v3_cross(yT, z, xT);
+    v3_scale(xT, -1.0, xR);
+
+    double mirror[3]; /* direction towards the light that reflects into the eye */
+    v3_axpy(dir, -2.0 * dn, hit->normal, mirror);
+    double k_refl_in[3];
+    v3_scale(mirror, -1.0, k_refl_in);
+
+    double tT[3], tR[3];
+    int failT = eval_slab(r, hit, theta, xT, yT, z, k_view, k_view, BIREF_TRANSMISSION, tT);
+    int failR = eval_slab(r, hit, theta, xR, yR, z, k_refl_in, k_view, BIREF_REFLECTION, tR);
+    if (failT || failR) {
+        /* A failed evaluation (grazing-angle breakdown) must not put a NaN in the image:
+         * treat the slab as a perfect mirror seen through the filter. */
+        *fallback = 1;
+        double p_in[3], p_out[3], C[2][2], P[2][2];
+        v3_cross(k_refl_in, xR, p_in);
+        v3_cross(k_view, xR, p_out);
+        light_coherency(r, xR, p_in, C);
+        analyzer(r, xR, p_out, P);
+        double f = passthrough(C, P);
+        v3_set(tT, 0, 0, 0);
+        v3_set(tR, f, f, f);
+    }
+    double Lb[3], Lf[3];
+    render_radiance(r, hp, dir, Lb);
+    render_radiance(r, hp, mirror, Lf);
+    /* Band-wise products: exact for grey light, an approximation for coloured light. */
+    for (int i = 0; i < 3; i++) xyz[i] = tT[i] * Lb[i] + tR[i] * Lf[i];
+    return 1;
+}

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# biref figure: quick figures produce non-empty PNG + CSV; bad input gives one error line.
+source "$(dirname "$0")/lib.sh"
+
+out="$tmpdir/figs"
+expect_ok "fig5 quick" figure fig5 -o "$out" --quick
+expect_ok "fig6c quick" figure fig6c -o "$out" --quick --threads 2
+for f in fig5.png fig5.csv fig6c.png fig6c.csv; do
+  if [ ! -s "$out/$f" ]; then
+    echo "FAIL: $f missing or empty"
+    fails=$((fails + 1))
+  fi
+done
+# A PNG starts with the 8-byte signature \x89PNG.
+for f in fig5.png fig6c.png; do
+  if [ "$(head -c 4 "$out/$f" | tail -c 3)" != "PNG" ]; then
+    echo "FAIL: $f is not a PNG"
+    fails=$((fails + 1))
+  fi
+done
+
+expect_error "unknown figure" figure fig42 -o "$out"
+expect_error "missing figure name" figure -o "$out"
+expect_error "missing -o" figure fig5 --quick
+expect_error "-o without value" figure fig5 -o
+expect_error "bad --threads" figure fig5 -o "$out" --threads zero
+touch "$tmpdir/afile"
+expect_error "output under a regular file" figure fig5 -o "$tmpdir/afile/sub" --quick
+expect_error "output is a file" figure fig5 -o "$tmpdir/afile" --quick
+expect_error "missing parent" figure fig5 -o "$tmpdir/no/such/dir" --quick
+finish

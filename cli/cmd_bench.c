@@ -1,0 +1,219 @@
+/* biref bench: frame time of each spectral integration method on a scene (the paper's table 1). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <omp.h>
+
+#include "cli_render.h"
+#include "commands.h"
+#include "json_out.h"
+
+static const char *const CMD = "bench";
+
+#define DEFAULT_METHODS "analytic,numeric-8,numeric-32,numeric-128,numeric-512,numeric-2048,ground-truth"
+#define MAX_METHODS 32
+
+static void help(void)
+{
+    printf("usage: biref bench [OPTIONS]\n\n"
+           "Times rendering one frame of a scene with each spectral integration method, like the\n"
+           "paper's table 1. Set-up (look-up tables, sample plans) is not timed. A method whose\n"
+           "frame would take longer than --max-seconds is timed on evenly spaced rows and scaled\n"
+           "to the full frame (reported as extrapolated).\n\n"
+           "Options:\n"
+           "  --scene FILE         scene (default examples/fig9a.json)\n"
+           "  --width W            frame width (default 1920)\n"
+           "  --height H           frame height (default 1080)\n"
+           "  --methods LIST       comma-separated: analytic, ground-truth, numeric-N (N samples)\n"
+           "                       (default " DEFAULT_METHODS ")\n"
+           "  --max-seconds S      time budget per method before extrapolating (default 10)\n"
+           "  --threads T          OpenMP threads (default: all cores)\n"
+           "  --json               {width, height, threads, methods: [{method, ms_per_frame,\n"
+           "                       ns_per_pixel, extrapolated, rows_timed}]}\n"
+           "  -h, --help           this help\n");
+}
+
+typedef struct {
+    char name[32];
+    biref_render_options opt;
+    double ms;
+    int rows_timed;
+    int extrapolated;
+} bench_method;
+
+static int parse_methods(const char *text, bench_method *m, int *n)
+{
+    char buf[512];
+    if (strlen(text) >= sizeof buf) return cli_error(CMD, "--methods: list too long"), -1;
+    strcpy(buf, text);
+    *n = 0;
+    char *save = NULL;
+    for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+        if (*n == MAX_METHODS) return cli_error(CMD, "--methods: at most %d methods", MAX_METHODS), -1;
+        bench_method *b = &m[(*n)++];
+        memset(b, 0, sizeof *b);
+        biref_render_options_default(&b->opt);
+        if (!strcmp(tok, "analytic")) {
+            b->opt.method = BIREF_METHOD_ANALYTIC;
+        } else if (!strcmp(tok, "ground-truth")) {
+            b->opt.method = BIREF_METHOD_GROUND_TRUTH;
+        } else if (!strncmp(tok, "numeric-", 8)) {
+            long s;
+            if (cli_parse_int(CMD, "--methods numeric-N", tok + 8, 1, 65536, &s)) return -1;
+            b->opt.method = BIREF_METHOD_NUMERIC;
+            b->opt.samples = (int)s;
+        } else {
+            return cli_error(CMD, "--methods: unknown method '%s' (expected analytic, numeric-N or ground-truth)",
+                             tok),
+                   -1;
+        }
+        snprintf(b->name, sizeof b->name, "%s", tok);
+    }
+    /* strtok_r skips empty fields; reject them explicitly ("analytic,,numeric-8"). */
+    if (*n == 0 || strstr(text, ",,") || text[0] == ',' || text[strlen(text) - 1] == ',')
+        return cli_error(CMD, "--methods: expected a comma-separated list, got '%s'", text), -1;
+    return 0;
+}
+
+/* Renders about k evenly spaced rows (every step-th row from step / 2, so the sample sees the
+ * same mix of slab and background as the frame) in one parallel call; k >= H renders the
+ * frame. Returns the wall time in s and sets *rows to the number of rows rendered. */
+static double time_rows(const biref_renderer *r, int H, int k, float *xyz, int *rows)
+{
+    int step = k >= H ? 1 : H / k;
+    int y0 = step / 2;
+    *rows = (H - y0 + step - 1) / step;
+    double t0 = biref_wall_seconds();
+    biref_renderer_render(r, y0, H, step, xyz, NULL, NULL, NULL);
+    return biref_wall_seconds() - t0;
+}
+
+static void format_time(double ms, char *buf, size_t n)
+{
+    if (ms < 1000.0)
+        snprintf(buf, n, "%.2f ms", ms);
+    else
+        snprintf(buf, n, "%.2f s", ms / 1000.0);
+}
+
+int cmd_bench(int argc, char **argv)
+{
+    enum { OPT_SCENE = 3000, OPT_WIDTH, OPT_HEIGHT, OPT_METHODS, OPT_MAX_SECONDS, OPT_THREADS, OPT_JSON };
+    static const struct option longopts[] = {{"scene", required_argument, 0, OPT_SCENE},
+                                             {"width", required_argument, 0, OPT_WIDTH},
+                                             {"height", required_argument, 0, OPT_HEIGHT},
+                                             {"methods", required_argument, 0, OPT_METHODS},
+                                             {"max-seconds", required_argument, 0, OPT_MAX_SECONDS},
+                                             {"threads", required_argument, 0, OPT_THREADS},
+                                             {"json", no_argument, 0, OPT_JSON},
+                                             {"help", no_argument, 0, 'h'},
+                                             {0, 0, 0, 0}};
+    const char *scene_path = "examples/fig9a.json", *methods = DEFAULT_METHODS;
+    long width = 1920, height = 1080, threads = 0;
+    double max_seconds = 10.0;
+    int json = 0;
+    opterr = 0;
+    optind = 1;
+    int c;
+    while ((c = getopt_long(argc, argv, ":h", longopts, NULL)) != -1) {
+        switch (c) {
+        case 'h': help(); return CLI_EXIT_OK;
+        case OPT_SCENE: scene_path = optarg; break;
+        case OPT_WIDTH:
+            if (cli_parse_int(CMD, "--width", optarg, 1, BIREF_SCENE_MAX_SIDE, &width)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_HEIGHT:
+            if (cli_parse_int(CMD, "--height", optarg, 1, BIREF_SCENE_MAX_SIDE, &height)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_METHODS: methods = optarg; break;
+        case OPT_MAX_SECONDS:
+            if (cli_parse_double(CMD, "--max-seconds", optarg, &max_seconds)) return CLI_EXIT_USAGE;
+            if (!(max_seconds > 0)) return cli_error(CMD, "--max-seconds: must be positive"), CLI_EXIT_USAGE;
+            break;
+        case OPT_THREADS:
+            if (cli_parse_int(CMD, "--threads", optarg, 1, 1024, &threads)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_JSON: json = 1; break;
+        default: cli_getopt_error(CMD, c, argv); return CLI_EXIT_USAGE;
+        }
+    }
+    if (optind < argc) return cli_error(CMD, "unexpected argument '%s'", argv[optind]), CLI_EXIT_USAGE;
+    bench_method m[MAX_METHODS];
+    int n_methods = 0;
+    if (parse_methods(methods, m, &n_methods)) return CLI_EXIT_USAGE;
+    biref_scene scene;
+    int rc = cli_load_scene(CMD, scene_path, &scene);
+    if (!rc) rc = cli_scene_resize(CMD, &scene, width, height);
+    if (rc) return rc;
+    const int W = scene.camera.width, H = scene.camera.height;
+    const int n_threads = threads > 0 ? (int)threads : omp_get_max_threads();
+
+    float *xyz = malloc((size_t)W * H * 3 * sizeof *xyz);
+    if (!xyz) return cli_error(CMD, "out of memory for a %dx%d frame", W, H), CLI_EXIT_FAIL;
+    int verbose = !json && isatty(fileno(stderr));
+    for (int i = 0; i < n_methods && !rc; i++) {
+        bench_method *b = &m[i];
+        b->opt.threads = n_threads;
+        biref_renderer *r = NULL;
+        if ((rc = cli_renderer_create(CMD, &scene, &b->opt, &r))) break;
+        if (verbose) fprintf(stderr, "timing %s ...\n", b->name);
+        /* Probe one row per thread, then spend the budget on as many evenly spaced rows as fit
+         * (the whole frame if it fits). */
+        int rows = 0, k = n_threads < H ? n_threads : H;
+        double t = time_rows(r, H, k, xyz, &rows);
+        int want = (int)fmin((double)H, floor(max_seconds * rows / fmax(t, 1e-9)));
+        if (want > rows) t = time_rows(r, H, want, xyz, &rows);
+        b->rows_timed = rows;
+        b->extrapolated = rows < H;
+        b->ms = 1e3 * t * H / rows;
+        biref_renderer_destroy(r);
+    }
+    free(xyz);
+    if (rc) return rc;
+
+    if (json) {
+        cJSON *root = cJSON_CreateObject();
+        cJSON_AddStringToObject(root, "scene", scene_path);
+        cJSON_AddNumberToObject(root, "width", W);
+        cJSON_AddNumberToObject(root, "height", H);
+        cJSON_AddNumberToObject(root, "threads", n_threads);
+        cJSON *arr = cJSON_AddArrayToObject(root, "methods");
+        for (int i = 0; i < n_methods; i++) {
+            cJSON *o = cJSON_CreateObject();
+            cJSON_AddStringToObject(o, "method", m[i].name);
+            cJSON_AddNumberToObject(o, "ms_per_frame", round(m[i].ms * 1000) / 1000);
+            cJSON_AddNumberToObject(o, "ns_per_pixel", round(m[i].ms * 1e6 / ((double)W * H) * 10) / 10);
+            cJSON_AddBoolToObject(o, "extrapolated", m[i].extrapolated);
+            cJSON_AddNumberToObject(o, "rows_timed", m[i].rows_timed);
+            cJSON_AddItemToArray(arr, o);
+        }
+        return json_print_and_free(root) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
+    }
+    printf("Scene %s, %dx%d, %d thread%s\n\n", scene_path, W, H, n_threads, n_threads == 1 ? "" : "s");
+    printf("%-34s %14s %12s\n", "Spectral integration method", "Frame time", "ns/pixel");
+    /* Grouped as in table 1: analytic first, then numeric by sample count, then ground truth. */
+    for (int pass = 0; pass < 3; pass++) {
+        const biref_method want = pass == 0 ? BIREF_METHOD_ANALYTIC : pass == 1 ? BIREF_METHOD_NUMERIC
+                                                                                 : BIREF_METHOD_GROUND_TRUTH;
+        int header = 0;
+        for (int i = 0; i < n_methods; i++) {
+            if (m[i].opt.method != want) continue;
+            if (!header && pass) printf("%s\n", pass == 1 ? "Numeric integration" : "Ground truth");
+            header = 1;
+            char label[48], tm[32];
+            if (want == BIREF_METHOD_ANALYTIC)
+                snprintf(label, sizeof label, "Analytic approximation");
+            else
+                snprintf(label, sizeof label, "  %d spectral samples",
+                         want == BIREF_METHOD_NUMERIC ? m[i].opt.samples : BIREF_GROUND_TRUTH_SAMPLES);
+            format_time(m[i].ms, tm, sizeof tm);
+            printf("%-34s %14s %12.0f", label, tm, m[i].ms * 1e6 / ((double)W * H));
+            if (m[i].extrapolated) printf("   (extrapolated from %d rows)", m[i].rows_timed);
+            printf("\n");
+        }
+    }
+    return CLI_EXIT_OK;
+}

@@ -85,6 +85,43 @@ void biref_spectrum_mix(const double X[2][2][3], const double w_in[2], const dou
 void biref_spectrum_numeric_polarized(const biref_numeric_plan *plan, const biref_slab_state *st, int which,
                                       const double complex C[2][2], const double complex P[2][2], double xyz[3]);
 
+/* ------------------------------------------------------------------------- */
+/* Polarisation states and the exact path-group expansion (beyond the paper)  */
+/* ------------------------------------------------------------------------- */
+
+/* Coherency matrix C[i][j] = <e_i conj(e_j)> in the s/p basis of a wave from Stokes parameters
+ * (S0 intensity, S1 = |e_s|^2 - |e_p|^2, S2 = 2 Re(e_s conj e_p), S3 = -2 Im(e_s conj e_p)):
+ * S3 > 0 for e = (1, i)/sqrt2, whose field turns from s towards p (docs/CONVENTIONS.md).
+ * BIREF_ERR_INVALID unless S0 >= 0 and S1^2 + S2^2 + S3^2 <= S0^2 (physical light). */
+biref_status biref_stokes_to_coherency(const double stokes[4], double complex C[2][2]);
+
+/* Analyzers as Jones matrices [in][out] in the s/p basis of the outgoing wave: projection onto
+ * the unit Jones vector u, P[k][o] = conj(u_k) u_o. Linear at angle psi from s towards p;
+ * circular with handedness +1 (u = (1, i)/sqrt2, S3 = +1) or -1. */
+void biref_analyzer_linear(double psi_rad, double complex P[2][2]);
+void biref_analyzer_circular(int handedness, double complex P[2][2]);
+
+typedef struct {
+    int order;        /* highest order summed coherently; -1: adaptive (default) */
+    double tolerance; /* adaptive: bound on the relative intensity error of truncation (1e-3) */
+    int max_order;    /* adaptive cap (default 12) */
+} biref_expansion_opts;
+
+void biref_expansion_opts_default(biref_expansion_opts *o);
+
+/* Exact spectral integral of the path-group expansion J(k) = sum_g M_g e^{ik Phi_g} (groups of
+ * paths with equal optical path) up to the chosen order, every pair of groups interfering via
+ * the S(cos), S(sin) table; orders beyond are added incoherently in closed form. Detected
+ * intensity for incident coherency C and analyzer P (NULL = none), which = BIREF_TRANSMISSION
+ * or BIREF_REFLECTION. *order_used may be NULL. No allocation. */
+biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
+                                                const double complex C[2][2], const double complex P[2][2],
+                                                const biref_expansion_opts *opts, double xyz[3], int *order_used);
+
+/* The four input/output pairs of transmission and reflection (like biref_spectrum_analytic). */
+biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab_state *st,
+                                      const biref_expansion_opts *opts, biref_spectrum *out);
+
 #ifdef __cplusplus
 }
 #endif

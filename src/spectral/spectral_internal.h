@@ -16,6 +16,7 @@ struct biref_spectral {
     int nodes;
     double d_max;
     double *table;
+    double *carrier; /* e^{2 pi i nu_c m step} per node, [m][re, im] */
     /* Endpoint terms of the asymptotic expansion used beyond d_max (integration by parts):
      * S(e^{ikD}) ~ i/(2 pi D) [Λ λ^2 e^{2 pi i D/λ}]_{λmin}^{λmax}. */
     double edge_lo[3], edge_hi[3];
@@ -34,5 +35,10 @@ struct biref_numeric_plan {
  * which = BIREF_TRANSMISSION or BIREF_REFLECTION, indexed [in][out][band]. */
 void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
                           double H[2][2][3]);
+
+/* Incoherent energy of all paths of order > order for coherency C and analyzer P (NULL = none):
+ * the closed-form tail of the path-group expansion (src/spectral/expansion.c). */
+void biref_expansion_tail(const biref_spectral *sp, const biref_slab_state *st, int which, const double complex C[2][2],
+                          const double complex P[2][2], int order, double out[3]);
 
 #endif

@@ -247,7 +247,8 @@ static int fig6c(const fig_ctx *c)
     double pad = 0.05 * fmax(xmax - xmin, ymax - ymin) + 0.01;
     char title[160];
     snprintf(title, sizeof title, "s-polarised in, p out (CIE 1931 xy)\n%s", FIG6C.label);
-    fig_plot_panel(xmin - pad, xmax + pad, ymin - pad, ymax + pad, "x", "y", title);
+    /* Extra room below keeps the legend (bottom right) off the curve. */
+    fig_plot_panel(xmin - pad, xmax + 2 * pad, ymin - 5 * pad, ymax + pad, "x", "y", title);
     draw_locus();
     fig_plot_line(n, xg, yg, FIG_BLACK, 4.0);
     fig_plot_line(n, xa, ya, FIG_ORANGE, 1.5);
@@ -259,10 +260,10 @@ static int fig6c(const fig_ctx *c)
         snprintf(lab, sizeof lab, "%d°", k * 10);
         fig_plot_text(xg[i], yg[i], lab);
     }
-    static const char *const labels[] = {"ground truth (16384 samples)", "analytic (eq. 26, m = 1)"};
+    static const char *const labels[] = {"ground truth (16384)", "analytic (m = 1)"};
     static const int colors[] = {FIG_BLACK, FIG_ORANGE};
     static const double widths[] = {4.0, 1.5};
-    fig_plot_legend(2, labels, colors, widths, FIG_LEFT);
+    fig_plot_legend(2, labels, colors, widths, FIG_BOTTOM);
     fig_plot_panel(0, 89, 0, fmax(1.0, demax * 1.05), "θ (degrees)", "ΔE00", "analytic vs ground truth");
     fig_plot_line(n, th, de, FIG_RED, 1.5);
     fig_plot_end();

@@ -71,7 +71,7 @@ void fig_plot_legend(int n, const char *const *labels, const int *colors, const 
         lw[i] = widths ? widths[i] : 1.5;
     }
     PLFLT w, h;
-    plschr(0.0, 0.8);
+    plschr(0.0, 0.7);
     pllegend(&w, &h, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX,
              PL_POSITION_INSIDE | ((corner & FIG_BOTTOM) ? PL_POSITION_BOTTOM : PL_POSITION_TOP) |
                  ((corner & FIG_LEFT) ? PL_POSITION_LEFT : PL_POSITION_RIGHT), 0.02, 0.02,

@@ -97,14 +97,17 @@ static void light_coherency(const biref_renderer *r, const double s[3], const do
     }
 }
 
-/* Analyzer Jones matrix [in][out] in the outgoing wave's basis (s, p_out); a world-fixed
- * analyzer is the projector onto its axis' transverse part. */
+/* Analyzer Jones matrix [in][out] in the outgoing wave's basis (s, p_out). A world-fixed
+ * analyzer with axis a passes the amplitude E . a_t (a_t: the axis' transverse part, |a_t| <= 1
+ * acting as a transmission factor) polarized along a_t / |a_t|: P = a_t (a_t / |a_t|)^T. */
 static void analyzer(const biref_renderer *r, const double s[3], const double p_out[3], double P[2][2])
 {
     if (r->filter.type == BIREF_FILTER_LINEAR) {
         double a[2] = {v3_dot(r->filter.direction, s), v3_dot(r->filter.direction, p_out)};
+        double l = sqrt(a[0] * a[0] + a[1] * a[1]);
+        double u[2] = {l > 0 ? a[0] / l : 0.0, l > 0 ? a[1] / l : 0.0};
         for (int i = 0; i < 2; i++)
-            for (int j = 0; j < 2; j++) P[i][j] = a[i] * a[j];
+            for (int j = 0; j < 2; j++) P[i][j] = a[i] * u[j];
     } else {
         P[0][0] = r->mask[0];
         P[1][1] = r->mask[1];

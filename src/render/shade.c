@@ -6,6 +6,8 @@
 
 #include "render/render_internal.h"
 #include "render/vec3.h"
+/* biref_analytic_terms: the analytic integral for one direction (T or R) only. */
+#include "spectral/spectral_internal.h"
 
 /* Rays leave surfaces from exactly on them; hits closer than this are the surface itself. */
 #define RAY_EPS 1e-9
@@ -139,28 +141,42 @@ static int eval_slab(const biref_renderer *r, const render_slab *sl, double thet
     slab.axis[2] = v3_dot(sl->axis_world, z);
     biref_slab_state st;
     if (biref_slab_prepare(&slab, theta, &st) != BIREF_OK) return 1;
-    if (!r->world_fixed) {
-        biref_spectrum spec;
-        if (r->opt.method == BIREF_METHOD_ANALYTIC)
-            biref_spectrum_analytic(r->sp, &st, &spec);
-        else
-            biref_spectrum_numeric(r->plan, &st, &spec);
-        biref_spectrum_mix(which == BIREF_TRANSMISSION ? spec.T : spec.R, r->w_in, r->mask, xyz);
+    if (r->opt.method == BIREF_METHOD_ANALYTIC) {
+        /* Only one of T and R is needed per evaluation, so call the per-direction terms
+         * (eq. 25: S = E + 2H) rather than biref_spectrum_analytic, which computes both and
+         * would double the cost of the dominant part of the pixel. */
+        double E[2][2][3], H[2][2][3], X[2][2][3];
+        biref_analytic_terms(r->sp, &st, which, E, H);
+        for (int i = 0; i < 2; i++)
+            for (int o = 0; o < 2; o++)
+                for (int j = 0; j < 3; j++) X[i][o][j] = E[i][o][j] + 2.0 * H[i][o][j];
+        biref_spectrum_mix(X, r->w_in, r->mask, xyz);
     } else {
-        /* s = x for both waves (convention: s is the frame's x), p = k x s for each. */
-        double p_in[3], p_out[3], Cr[2][2], Pr[2][2];
-        v3_cross(k_in, x, p_in);
-        v3_cross(k_out, x, p_out);
-        light_coherency(r, x, p_in, Cr);
-        analyzer(r, x, p_out, Pr);
+        /* Numeric methods go through the polarized integrator even for the paper's s/p model:
+         * it evaluates only the Jones matrix needed (T or R), and a diagonal C and P give
+         * exactly biref_spectrum_mix's sum. s = x for both waves (s is the frame's x), p = k x s. */
+        double Cr[2][2], Pr[2][2];
+        if (r->world_fixed) {
+            double p_in[3], p_out[3];
+            v3_cross(k_in, x, p_in);
+            v3_cross(k_out, x, p_out);
+            light_coherency(r, x, p_in, Cr);
+            analyzer(r, x, p_out, Pr);
+        } else {
+            Cr[0][0] = r->w_in[0];
+            Cr[1][1] = r->w_in[1];
+            Cr[0][1] = Cr[1][0] = 0.0;
+            Pr[0][0] = r->mask[0];
+            Pr[1][1] = r->mask[1];
+            Pr[0][1] = Pr[1][0] = 0.0;
+        }
         double complex C[2][2], P[2][2];
         for (int i = 0; i < 2; i++)
             for (int j = 0; j < 2; j++) {
                 C[i][j] = Cr[i][j];
                 P[i][j] = Pr[i][j];
             }
-        biref_spectrum_numeric_polarized(r->plan, &st, which, C, r->filter.type == BIREF_FILTER_NONE ? NULL : P,
-                                         xyz);
+        biref_spectrum_numeric_polarized(r->plan, &st, which, C, r->filter.type == BIREF_FILTER_NONE ? NULL : P, xyz);
     }
     return !(isfinite(xyz[0]) && isfinite(xyz[1]) && isfinite(xyz[2]));
 }

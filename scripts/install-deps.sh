@@ -2,7 +2,8 @@
 # Installs the Debian packages biref builds and tests with, only those that are missing.
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config libpng-dev libcjson-dev liblapacke-dev liblapack-dev
-      libblas-dev liblcms2-dev libcairo2-dev libplplot-dev)
+      libblas-dev liblcms2-dev libcairo2-dev libplplot-dev
+      plplot-driver-cairo)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

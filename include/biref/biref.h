@@ -18,5 +18,6 @@
 #include "biref/color.h"
 #include "biref/spectral.h"
 #include "biref/render.h"
+#include "biref/photoelastic.h"
 
 #endif /* BIREF_BIREF_H */

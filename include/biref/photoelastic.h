@@ -1,0 +1,232 @@
+/*
+ * biref — photoelasticity: plane-stress fields in a plate, the stress-optic law, and the
+ * plate seen at normal incidence in a plane or circular polariscope (docs/PHOTOELASTICITY.md).
+ *
+ * Units: SI throughout (metres, pascals, newtons); wavelengths in nm like the rest of biref.
+ *
+ * Plate frame. The plate lies in the (x, y) plane of the picture, x to the right and y up as
+ * seen by an observer looking at the light source through the plate. At normal incidence this
+ * is the slab frame of docs/CONVENTIONS.md with x = s and y = p (s x p = k points at the
+ * observer), so an angle "from x towards y" is an angle from s towards p: counter-clockwise
+ * in the picture. In the slab frame the in-plane direction at angle phi is the optic axis
+ * (cos phi, 0, sin phi).
+ *
+ * No global mutable state; everything here is re-entrant. A biref_pe_grid is immutable after
+ * loading and may be shared by threads.
+ */
+#ifndef BIREF_PHOTOELASTIC_H
+#define BIREF_PHOTOELASTIC_H
+
+#include <complex.h>
+#include <stddef.h>
+
+#include "biref/common.h"
+#include "biref/spectral.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* 1 Brewster = 1e-12 m^2/N = 1e-12 / Pa. */
+#define BIREF_BREWSTER 1e-12
+
+/* ------------------------------------------------------------------------ */
+/* Material and stress-optic law                                             */
+/* ------------------------------------------------------------------------ */
+
+/* n1 - n2 = C (sigma1 - sigma2) (relative stress-optic law, plane stress). */
+typedef struct {
+    const char *name;   /* preset name, or "custom" */
+    const char *source; /* where the numbers come from (preset), or "user" */
+    double n0;          /* index of the unstressed material */
+    double C_per_Pa;    /* relative stress-optic coefficient C in 1/Pa (> 0) */
+} biref_pe_material;
+
+/* Presets: "polycarbonate", "epoxy", "pmma", "glass". BIREF_ERR_INVALID for other names. */
+biref_status biref_pe_material_preset(const char *name, biref_pe_material *out);
+/* The i-th preset (i < biref_pe_material_count()), for listings. */
+size_t biref_pe_material_count(void);
+const biref_pe_material *biref_pe_material_at(size_t i);
+/* Checks n0 and C (finite, n0 >= 1, C > 0); one-line reason into msg. */
+biref_status biref_pe_material_check(const biref_pe_material *m, char *msg, size_t msg_len);
+/* Material fringe constant f_sigma = lambda / C in N/m: N = h (sigma1 - sigma2) / f_sigma. */
+double biref_pe_fringe_constant(const biref_pe_material *m, double lambda_nm);
+
+/* In-plane stress tensor (plane stress, sigma_zz = tau_xz = tau_yz = 0), Pa. */
+typedef struct {
+    double sxx, syy, txy;
+} biref_pe_stress;
+
+/* Principal stresses s1 >= s2 and the direction of s1 at angle phi (radians, from x towards
+ * y, in (-pi/2, pi/2]). For an isotropic state (s1 == s2) phi = 0. */
+typedef struct {
+    double s1, s2;
+    double phi;
+    double cos2phi, sin2phi; /* of 2 phi, without trigonometry */
+} biref_pe_principal;
+
+void biref_pe_principal_of(const biref_pe_stress *s, biref_pe_principal *out);
+
+/* The uniaxial slab that models the plate at one point (docs/PHOTOELASTICITY.md, "Model"):
+ * optic axis in the plate plane along principal direction 1, eta_e = n1 = n0 + C (s1 - s2),
+ * eta_o = n2 = n0; thickness h; surrounding index eta_i. */
+biref_slab biref_pe_slab_at(const biref_pe_material *m, double thickness_m, double eta_i,
+                            const biref_pe_principal *p);
+
+/* ------------------------------------------------------------------------ */
+/* Stress fields (closed forms)                                              */
+/* ------------------------------------------------------------------------ */
+
+/* Disk of radius R and thickness h under diametral compression P (N) applied at (0, +-R):
+ * two Flamant point loads plus uniform tension P / (pi R h) (Frocht; Timoshenko & Goodier).
+ * Meaningful for x^2 + y^2 <= R^2; infinite at the load points. */
+void biref_pe_disk_stress(double R, double h, double P, double x, double y, biref_pe_stress *out);
+
+/* Infinite plate with a circular hole of radius a at the origin under remote uniaxial tension
+ * S (Pa) along x (Kirsch 1898). Meaningful for x^2 + y^2 >= a^2. */
+void biref_pe_kirsch_stress(double a, double S, double x, double y, biref_pe_stress *out);
+
+/* Beam of depth H (along y, centred on y = 0) and thickness h in pure bending by a moment M
+ * (N m): sigma_xx = M y / I with I = h H^3 / 12; positive M stretches the fibres at y > 0. */
+void biref_pe_beam_stress(double H, double h, double M, double x, double y, biref_pe_stress *out);
+
+/* A user-supplied field on a regular grid (CSV, see biref_pe_grid_parse). */
+typedef struct biref_pe_grid biref_pe_grid;
+
+/* Parses CSV text: a header naming the five columns x_mm, y_mm, sxx_MPa, syy_MPa, txy_MPa
+ * (any order, no others), then one row per grid node (any order) of a full regular grid of
+ * at least 2 x 2 nodes. Blank lines and lines starting with '#' are ignored; CR LF accepted.
+ * On failure: BIREF_ERR_INVALID and one line "line N: reason" (or "reason" when no line is
+ * to blame) in msg. */
+biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **out, char *msg, size_t msg_len);
+/* Reads and parses a file; BIREF_ERR_IO with "cannot read: ..." if it cannot be read. */
+biref_status biref_pe_grid_load(const char *path, biref_pe_grid **out, char *msg, size_t msg_len);
+void biref_pe_grid_destroy(biref_pe_grid *g);
+/* Grid extent in metres: xmin, xmax, ymin, ymax; and the node counts. */
+void biref_pe_grid_bounds(const biref_pe_grid *g, double bounds[4]);
+void biref_pe_grid_size(const biref_pe_grid *g, int *nx, int *ny);
+/* Bilinear interpolation; returns 0 (and leaves out untouched) outside the grid's extent. */
+int biref_pe_grid_stress(const biref_pe_grid *g, double x, double y, biref_pe_stress *out);
+
+typedef enum { BIREF_PE_DISK = 0, BIREF_PE_HOLE = 1, BIREF_PE_BEAM = 2, BIREF_PE_GRID = 3 } biref_pe_field_kind;
+
+/* A plate: its stress field and outline. The picture shows frame[] (xmin, xmax, ymin, ymax);
+ * points outside the material show the polariscope without a specimen. */
+typedef struct {
+    biref_pe_field_kind kind;
+    double thickness;   /* plate thickness h, m */
+    double radius;      /* disk: R; hole: a (m) */
+    double load;        /* disk: P (N, compressive) */
+    double stress;      /* hole: remote tension S (Pa) */
+    double moment;      /* beam: M (N m) */
+    double depth;       /* beam: H (m) */
+    double width, height; /* hole: plate sides (m); beam: length (width) */
+    double angle;       /* hole: direction of the remote tension from x towards y (rad) */
+    const biref_pe_grid *grid; /* grid: borrowed */
+    double frame[4];
+} biref_pe_field;
+
+/* Fills f for a preset with the given parameters and a frame that shows the whole part (disk:
+ * 2R plus a 4 % margin; hole: the plate; beam: the length times 1.5 H). One-line reason into
+ * msg for non-positive or non-finite parameters, a hole not inside its plate, etc. */
+biref_status biref_pe_field_disk(biref_pe_field *f, double R, double h, double P, char *msg, size_t msg_len);
+biref_status biref_pe_field_hole(biref_pe_field *f, double a, double width, double height, double h, double S,
+                                 double angle, char *msg, size_t msg_len);
+biref_status biref_pe_field_beam(biref_pe_field *f, double length, double H, double h, double M, char *msg,
+                                 size_t msg_len);
+biref_status biref_pe_field_grid(biref_pe_field *f, const biref_pe_grid *g, double h, char *msg, size_t msg_len);
+
+/* Stress at (x, y); returns 1 inside the material, 0 outside (out untouched). */
+int biref_pe_field_stress(const biref_pe_field *f, double x, double y, biref_pe_stress *out);
+
+/* ------------------------------------------------------------------------ */
+/* Polariscope and light                                                     */
+/* ------------------------------------------------------------------------ */
+
+typedef enum { BIREF_PE_PLANE = 0, BIREF_PE_CIRCULAR = 1 } biref_pe_polariscope_kind;
+typedef enum { BIREF_PE_DARK = 0, BIREF_PE_LIGHT = 1 } biref_pe_field_type;
+
+/* Ideal achromatic polariscope: the light leaving the input side (polarizer, and quarter-wave
+ * plate for a circular polariscope) as a coherency matrix C, and the output side (quarter-wave
+ * plate and analyzer) as a projector P onto the unit Jones vector u (s/p basis; P = conj(u) u^T,
+ * biref_analyzer_linear / biref_analyzer_circular). The input light has unit intensity. */
+typedef struct {
+    double complex C[2][2];
+    double complex P[2][2];
+    double complex u[2];
+} biref_pe_polariscope;
+
+/* Plane: polarizer at angle psi from x towards y; analyzer crossed (dark) or parallel (light).
+ * Circular: polarizer, quarter-wave plate at 45 deg to it, specimen, quarter-wave plate,
+ * analyzer. With ideal achromatic plates the light reaching the specimen is circular (here
+ * S3 = +1, whatever psi) and the output side is a circular analyzer that blocks it (dark
+ * field, handedness -1) or passes it (light field, +1); psi then changes nothing. */
+void biref_pe_polariscope_make(biref_pe_polariscope_kind kind, biref_pe_field_type field, double psi_rad,
+                               biref_pe_polariscope *out);
+/* Any polarized input (Stokes, S0 = 1 for unit intensity) and analyzer projector P (a rank-one
+ * projector such as biref_analyzer_*). BIREF_ERR_INVALID for unphysical Stokes vectors or a
+ * P that is not a unit-vector projector. */
+biref_status biref_pe_polariscope_custom(const double stokes[4], const double complex P[2][2],
+                                         biref_pe_polariscope *out);
+/* Detected intensity with no specimen: u^H C u. */
+double biref_pe_polariscope_background(const biref_pe_polariscope *pol);
+
+typedef enum { BIREF_PE_WHITE = 0, BIREF_PE_MONO = 1 } biref_pe_light_kind;
+
+/* Everything about one picture except the stress field. */
+typedef struct {
+    biref_pe_material material;
+    double thickness;      /* h, m */
+    double eta_i;          /* surrounding index (1 = air; n0 = index-matched immersion) */
+    biref_pe_polariscope pol;
+    biref_pe_light_kind light;
+    double lambda_nm;      /* monochromatic wavelength */
+} biref_pe_setup;
+
+/* Retardation (n1 - n2) h in nm and fringe order N = (n1 - n2) h / lambda = h C (s1 - s2) / lambda. */
+double biref_pe_retardation_nm(const biref_pe_setup *s, const biref_pe_principal *p);
+
+/* Fast path (docs/PHOTOELASTICITY.md, "Fast path"): at normal incidence with the axis in the
+ * plane the o and e modes do not mix, J_T = t_e a a^T + t_o b b^T (a, b the principal
+ * directions), and the detected intensity is alpha <|t_e|^2> + beta <|t_o|^2> + 2 Re(gamma
+ * <t_e conj t_o>). Multiple reflections interfere within an order only (the source's coherence
+ * length is far below the plate's round trip 2 n h): white light needs S(cos), S(sin) of the
+ * path differences (2m + 1) delta, m = 0, 1, 2 (biref_spectral_phase_integrals); monochromatic
+ * light is the closed-form geometric series. White: band-normalised XYZ (white E = (1,1,1));
+ * mono: xyz[0] = xyz[1] = xyz[2] = intensity. sp may be NULL for monochromatic light. */
+void biref_pe_shade(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p, double xyz[3]);
+
+/* The same point by the general machinery, for verification: biref_slab_prepare on
+ * biref_pe_slab_at, then white: biref_spectrum_expansion_polarized (every interference term,
+ * adaptive order); mono: |e J_T P|^2 of the closed-form Jones matrix at lambda_nm, averaged over
+ * `thickness_jitter` uniform thickness samples spanning thickness_span_nm (0 or 1 sample: the
+ * coherent value at the nominal thickness). */
+biref_status biref_pe_shade_general(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p,
+                                    int thickness_jitter, double thickness_span_nm, double xyz[3]);
+
+/* The same point by numeric spectral integration (white light only). */
+biref_status biref_pe_shade_numeric(const biref_pe_setup *s, const biref_numeric_plan *plan,
+                                    const biref_pe_principal *p, double xyz[3]);
+
+/* ------------------------------------------------------------------------ */
+/* Pictures                                                                  */
+/* ------------------------------------------------------------------------ */
+
+typedef struct {
+    int width, height;  /* pixels; the frame is mapped with square pixels if the caller chose so */
+    int supersample;    /* k x k samples per pixel (box filter), 1..8 */
+    int threads;        /* OpenMP threads, 0 = default */
+    double tint[3];     /* mono only: XYZ the intensity multiplies (white E = (1,1,1)) */
+} biref_pe_image_opts;
+
+/* Renders field f seen through setup s at normal incidence: XYZ floats (3 per pixel, row-major,
+ * top row = frame's ymax), white E = (1,1,1). sp is required for white light. Deterministic and
+ * independent of the thread count. */
+biref_status biref_pe_render(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_field *f,
+                             const biref_pe_image_opts *opt, float *xyz);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* BIREF_PHOTOELASTIC_H */

@@ -1,0 +1,440 @@
+/* A user-supplied plane-stress field on a regular grid: CSV parsing with line-numbered errors
+ * and bilinear interpolation (docs/PHOTOELASTICITY.md, "Stress from a file"). */
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "biref/photoelastic.h"
+
+struct biref_pe_grid {
+    int nx, ny;
+    double x0, dx, y0, dy; /* metres */
+    double *v;             /* [ny][nx][3]: sxx, syy, txy in Pa */
+};
+
+enum { COL_X, COL_Y, COL_SXX, COL_SYY, COL_TXY, NCOL };
+static const char *const COL_NAMES[NCOL] = {"x_mm", "y_mm", "sxx_MPa", "syy_MPa", "txy_MPa"};
+#define HEADER_TEXT "x_mm,y_mm,sxx_MPa,syy_MPa,txy_MPa"
+/* Refuse absurd files before allocating for them. */
+#define MAX_ROWS 50000000L
+#define MAX_FILE_BYTES (1L << 31)
+
+typedef struct {
+    double v[NCOL];
+    long line;
+} row;
+
+static biref_status failf(char *msg, size_t msg_len, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static biref_status failf(char *msg, size_t msg_len, const char *fmt, ...)
+{
+    if (msg && msg_len) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(msg, msg_len, fmt, ap);
+        va_end(ap);
+    }
+    return BIREF_ERR_INVALID;
+}
+
+/* Trims spaces and tabs in place: [*b, *e). */
+static void trim(const char **b, const char **e)
+{
+    while (*b < *e && (**b == ' ' || **b == '\t')) (*b)++;
+    while (*e > *b && ((*e)[-1] == ' ' || (*e)[-1] == '\t')) (*e)--;
+}
+
+/* Splits [b, e) at commas into at most cap fields; returns the field count (may exceed cap:
+ * counting continues so that "too many fields" can be reported). */
+static int split(const char *b, const char *e, const char *fb[], const char *fe[], int cap)
+{
+    int n = 0;
+    const char *s = b;
+    for (const char *p = b;; p++) {
+        if (p == e || *p == ',') {
+            if (n < cap) {
+                fb[n] = s;
+                fe[n] = p;
+                trim(&fb[n], &fe[n]);
+            }
+            n++;
+            if (p == e) break;
+            s = p + 1;
+        }
+    }
+    return n;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Distinct values of v (n > 0, sorted copy in tmp) merged within tol; returns their count and
+ * the smallest gap between consecutive distinct values. */
+static int distinct(const double *v, long n, double *tmp, double tol, double *min_gap)
+{
+    memcpy(tmp, v, (size_t)n * sizeof *tmp);
+    qsort(tmp, (size_t)n, sizeof *tmp, cmp_double);
+    int count = 1;
+    double last = tmp[0];
+    *min_gap = INFINITY;
+    for (long i = 1; i < n; i++)
+        if (tmp[i] - last > tol) {
+            if (tmp[i] - last < *min_gap) *min_gap = tmp[i] - last;
+            last = tmp[i];
+            if (count < 0x7fffffff) count++;
+        }
+    return count;
+}
+
+/* Checks one axis of the grid: every value on lo + k * step. Reports the first offending row. */
+static biref_status axis_fit(const row *rows, long n, int col, double lo, double hi, double *tmp, int *count,
+                             double *step, char *msg, size_t msg_len)
+{
+    const char *name = COL_NAMES[col];
+    for (long i = 0; i < n; i++) tmp[i] = rows[i].v[col];
+    double span = hi - lo;
+    /* Values within 1e-6 of the extent are one node: CSV writers round, and the same node may
+     * be printed slightly differently in different rows. */
+    double tol = 1e-6 * fmax(span, 1e-9 * fmax(fabs(lo), fabs(hi)));
+    double *work = tmp + n, gap;
+    int distinct_n = distinct(tmp, n, work, tol, &gap);
+    if (distinct_n < 2)
+        return failf(msg, msg_len, "all rows have %s = %g: a grid needs at least 2 distinct values of %s and of %s",
+                     name, lo, COL_NAMES[COL_X], COL_NAMES[COL_Y]);
+    /* The node spacing is the smallest gap; every value must sit on lo + k * gap. */
+    double k_max = span / gap;
+    if (k_max + 1.0 > (double)n) {
+        /* More lattice nodes than rows: the grid cannot be complete. Blame the value that made
+         * the smallest gap (typically a stray value next to a regular one). */
+        double prev = work[0], blame = work[0], before = work[0], g_min = INFINITY;
+        for (long i = 1; i < n; i++)
+            if (work[i] - prev > tol) {
+                if (work[i] - prev < g_min) {
+                    g_min = work[i] - prev;
+                    blame = work[i];
+                    before = prev;
+                }
+                prev = work[i];
+            }
+        for (long i = 0; i < n; i++)
+            if (fabs(rows[i].v[col] - blame) <= tol)
+                return failf(msg, msg_len,
+                             "line %ld: %s = %g is not on a regular grid (only %g from the neighbouring value %g)",
+                             rows[i].line, name, rows[i].v[col], g_min, before);
+    }
+    long nodes = lround(k_max) + 1;
+    double d = span / (double)(nodes - 1);
+    for (long i = 0; i < n; i++) {
+        double k = (rows[i].v[col] - lo) / d;
+        if (fabs(k - nearbyint(k)) > 1e-3) /* 0.1 % of the spacing: rounding, not a stray node */
+            return failf(msg, msg_len,
+                         "line %ld: %s = %g is not on a regular grid (the values of %s run from %g to %g in steps "
+                         "of %g)",
+                         rows[i].line, name, rows[i].v[col], name, lo, hi, gap);
+    }
+    if (nodes != distinct_n) {
+        /* Every value is on the lattice but some lattice values never occur: a wider gap. Blame
+         * the first row with the value after the first such gap. */
+        double prev = work[0];
+        for (long j = 1; j < n; j++) {
+            if (work[j] - prev <= tol) continue;
+            if (work[j] - prev > 1.5 * d)
+                for (long i = 0; i < n; i++)
+                    if (fabs(rows[i].v[col] - work[j]) <= tol)
+                        return failf(msg, msg_len,
+                                     "line %ld: %s = %g follows %g with a gap of %g, but other values are %g apart: "
+                                     "not a regular grid",
+                                     rows[i].line, name, rows[i].v[col], prev, work[j] - prev, d);
+            prev = work[j];
+        }
+        return failf(msg, msg_len, "%s: not a regular grid", name); /* not reached */
+    }
+    *count = (int)nodes;
+    *step = d;
+    return BIREF_OK;
+}
+
+biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **out, char *msg, size_t msg_len)
+{
+    if (!out) return failf(msg, msg_len, "no output");
+    *out = NULL;
+    if (!text) return failf(msg, msg_len, "no text");
+    int col_of[NCOL]; /* position in the file of each named column */
+    int have_header = 0;
+    long line = 0, cap = 0, n = 0;
+    row *rows = NULL;
+    biref_status st = BIREF_OK;
+    const char *p = text, *end = text + len;
+    while (p < end && st == BIREF_OK) {
+        const char *nl = memchr(p, '\n', (size_t)(end - p));
+        int complete = nl != NULL; /* a line without '\n' ends the file */
+        const char *le = nl ? nl : end;
+        const char *b = p;
+        p = nl ? nl + 1 : end;
+        line++;
+        if (le > b && le[-1] == '\r') le--;
+        const char *tb = b, *te = le;
+        trim(&tb, &te);
+        if (tb == te || *tb == '#') continue;
+        if (memchr(b, '\0', (size_t)(le - b))) {
+            st = failf(msg, msg_len, "line %ld: contains a NUL byte (not a text file?)", line);
+            break;
+        }
+        const char *fb[NCOL], *fe[NCOL];
+        int nf = split(b, le, fb, fe, NCOL);
+        if (!have_header) {
+            int seen[NCOL] = {0};
+            if (nf > NCOL) {
+                st = failf(msg, msg_len, "line %ld: header has %d columns; expected the 5 columns " HEADER_TEXT, line,
+                           nf);
+                break;
+            }
+            for (int i = 0; i < nf && st == BIREF_OK; i++) {
+                int which = -1;
+                for (int c = 0; c < NCOL; c++)
+                    if ((size_t)(fe[i] - fb[i]) == strlen(COL_NAMES[c]) && !memcmp(fb[i], COL_NAMES[c], strlen(COL_NAMES[c])))
+                        which = c;
+                if (which < 0) {
+                    char *endp = NULL;
+                    (void)strtod(fb[i], &endp);
+                    if (i == 0 && endp != fb[i])
+                        st = failf(msg, msg_len, "line %ld: expected the header " HEADER_TEXT " before the data",
+                                   line);
+                    else
+                        st = failf(msg, msg_len, "line %ld: unknown column '%.*s' in the header (expected " HEADER_TEXT
+                                   ")", line, (int)(fe[i] - fb[i]) > 40 ? 40 : (int)(fe[i] - fb[i]), fb[i]);
+                } else if (seen[which]) {
+                    st = failf(msg, msg_len, "line %ld: column %s appears twice in the header", line, COL_NAMES[which]);
+                } else {
+                    seen[which] = 1;
+                    col_of[which] = i;
+                }
+            }
+            for (int c = 0; c < NCOL && st == BIREF_OK; c++)
+                if (!seen[c])
+                    st = failf(msg, msg_len, "line %ld: the header lacks column %s (expected " HEADER_TEXT ")", line,
+                               COL_NAMES[c]);
+            have_header = 1;
+            continue;
+        }
+        if (nf != NCOL) {
+            if (!complete && nf < NCOL)
+                st = failf(msg, msg_len, "line %ld: truncated row (%d of %d fields, and the file ends there)", line, nf,
+                           NCOL);
+            else
+                st = failf(msg, msg_len, "line %ld: expected %d comma-separated fields, got %d", line, NCOL, nf);
+            break;
+        }
+        if (n == cap) {
+            if (n >= MAX_ROWS) {
+                st = failf(msg, msg_len, "line %ld: more than %ld rows", line, MAX_ROWS);
+                break;
+            }
+            long ncap = cap ? 2 * cap : 1024;
+            row *nr = realloc(rows, (size_t)ncap * sizeof *rows);
+            if (!nr) {
+                st = BIREF_ERR_NOMEM;
+                if (msg && msg_len) snprintf(msg, msg_len, "out of memory");
+                break;
+            }
+            rows = nr;
+            cap = ncap;
+        }
+        row *r = &rows[n];
+        r->line = line;
+        for (int c = 0; c < NCOL && st == BIREF_OK; c++) {
+            const char *s = fb[col_of[c]], *e = fe[col_of[c]];
+            int w = (int)(e - s) > 40 ? 40 : (int)(e - s);
+            if (s == e) {
+                st = failf(msg, msg_len, "line %ld, column %s: empty field", line, COL_NAMES[c]);
+                break;
+            }
+            char buf[64];
+            if ((size_t)(e - s) >= sizeof buf) {
+                st = failf(msg, msg_len, "line %ld, column %s: not a number: '%.*s...'", line, COL_NAMES[c], w, s);
+                break;
+            }
+            memcpy(buf, s, (size_t)(e - s));
+            buf[e - s] = '\0';
+            char *endp = NULL;
+            errno = 0;
+            double v = strtod(buf, &endp);
+            if (endp == buf || *endp != '\0')
+                st = failf(msg, msg_len, "line %ld, column %s: not a number: '%s'", line, COL_NAMES[c], buf);
+            else if (!isfinite(v) || errno == ERANGE)
+                st = failf(msg, msg_len, "line %ld, column %s: not a finite number: '%s'", line, COL_NAMES[c], buf);
+            r->v[c] = v;
+        }
+        n++;
+    }
+    if (st == BIREF_OK && !have_header)
+        st = failf(msg, msg_len, "empty file: expected the header " HEADER_TEXT " and at least 4 rows");
+    if (st == BIREF_OK && n < 4)
+        st = failf(msg, msg_len, "line %ld: the file ends after %ld data row%s; a grid needs at least 2 x 2 nodes",
+                   line, n, n == 1 ? "" : "s");
+    if (st != BIREF_OK) {
+        free(rows);
+        return st;
+    }
+
+    /* Regularity: the x values and the y values each on an evenly spaced lattice, and every
+     * (x, y) node present exactly once. */
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (long i = 0; i < n; i++)
+        for (int c = 0; c < 2; c++) {
+            lo[c] = fmin(lo[c], rows[i].v[c]);
+            hi[c] = fmax(hi[c], rows[i].v[c]);
+        }
+    double *tmp = malloc((size_t)n * 2 * sizeof *tmp);
+    biref_pe_grid *g = calloc(1, sizeof *g);
+    if (!tmp || !g) {
+        free(tmp);
+        free(g);
+        free(rows);
+        if (msg && msg_len) snprintf(msg, msg_len, "out of memory");
+        return BIREF_ERR_NOMEM;
+    }
+    double dxm = 0, dym = 0;
+    st = axis_fit(rows, n, COL_X, lo[0], hi[0], tmp, &g->nx, &dxm, msg, msg_len);
+    if (st == BIREF_OK) st = axis_fit(rows, n, COL_Y, lo[1], hi[1], tmp, &g->ny, &dym, msg, msg_len);
+    free(tmp);
+    long *owner = NULL;
+    if (st == BIREF_OK) {
+        if ((long)g->nx * g->ny > MAX_ROWS) {
+            st = failf(msg, msg_len, "the grid would have %ld nodes (more than %ld)", (long)g->nx * g->ny, MAX_ROWS);
+        } else {
+            g->v = malloc((size_t)g->nx * g->ny * 3 * sizeof *g->v);
+            owner = malloc((size_t)g->nx * g->ny * sizeof *owner);
+            if (!g->v || !owner) {
+                st = BIREF_ERR_NOMEM;
+                if (msg && msg_len) snprintf(msg, msg_len, "out of memory");
+            }
+        }
+    }
+    if (st == BIREF_OK) {
+        for (long k = 0; k < (long)g->nx * g->ny; k++) owner[k] = 0;
+        for (long i = 0; i < n && st == BIREF_OK; i++) {
+            long ix = lround((rows[i].v[COL_X] - lo[0]) / dxm), iy = lround((rows[i].v[COL_Y] - lo[1]) / dym);
+            long k = iy * g->nx + ix;
+            if (owner[k]) {
+                st = failf(msg, msg_len, "line %ld: node x_mm = %g, y_mm = %g repeats line %ld", rows[i].line,
+                           rows[i].v[COL_X], rows[i].v[COL_Y], owner[k]);
+                break;
+            }
+            owner[k] = rows[i].line;
+            /* MPa -> Pa. */
+            g->v[3 * k + 0] = rows[i].v[COL_SXX] * 1e6;
+            g->v[3 * k + 1] = rows[i].v[COL_SYY] * 1e6;
+            g->v[3 * k + 2] = rows[i].v[COL_TXY] * 1e6;
+        }
+        for (long k = 0; k < (long)g->nx * g->ny && st == BIREF_OK; k++)
+            if (!owner[k])
+                st = failf(msg, msg_len, "irregular grid: no row for the node x_mm = %g, y_mm = %g (%d x %d nodes)",
+                           lo[0] + (double)(k % g->nx) * dxm, lo[1] + (double)(k / g->nx) * dym, g->nx, g->ny);
+    }
+    free(owner);
+    free(rows);
+    if (st != BIREF_OK) {
+        biref_pe_grid_destroy(g);
+        return st;
+    }
+    /* mm -> m. */
+    g->x0 = lo[0] * 1e-3;
+    g->dx = dxm * 1e-3;
+    g->y0 = lo[1] * 1e-3;
+    g->dy = dym * 1e-3;
+    *out = g;
+    return BIREF_OK;
+}
+
+biref_status biref_pe_grid_load(const char *path, biref_pe_grid **out, char *msg, size_t msg_len)
+{
+    if (out) *out = NULL;
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        if (msg && msg_len) snprintf(msg, msg_len, "cannot read: %s", strerror(errno));
+        return BIREF_ERR_IO;
+    }
+    size_t cap = 1 << 16, len = 0;
+    char *buf = malloc(cap);
+    int err = buf == NULL;
+    while (!err) {
+        if (len == cap) {
+            if (cap >= (size_t)MAX_FILE_BYTES) {
+                err = 2;
+                break;
+            }
+            char *nb = realloc(buf, cap * 2);
+            if (!nb) {
+                err = 1;
+                break;
+            }
+            buf = nb;
+            cap *= 2;
+        }
+        size_t got = fread(buf + len, 1, cap - len, f);
+        len += got;
+        if (got == 0) {
+            if (ferror(f)) err = 3;
+            break;
+        }
+    }
+    int saved = errno;
+    fclose(f);
+    if (err) {
+        free(buf);
+        if (msg && msg_len)
+            snprintf(msg, msg_len, "cannot read: %s",
+                     err == 2 ? "file too large" : err == 3 ? strerror(saved) : "out of memory");
+        return err == 1 ? BIREF_ERR_NOMEM : BIREF_ERR_IO;
+    }
+    biref_status st = biref_pe_grid_parse(buf, len, out, msg, msg_len);
+    free(buf);
+    return st;
+}
+
+void biref_pe_grid_destroy(biref_pe_grid *g)
+{
+    if (!g) return;
+    free(g->v);
+    free(g);
+}
+
+void biref_pe_grid_bounds(const biref_pe_grid *g, double b[4])
+{
+    b[0] = g->x0;
+    b[1] = g->x0 + (g->nx - 1) * g->dx;
+    b[2] = g->y0;
+    b[3] = g->y0 + (g->ny - 1) * g->dy;
+}
+
+void biref_pe_grid_size(const biref_pe_grid *g, int *nx, int *ny)
+{
+    *nx = g->nx;
+    *ny = g->ny;
+}
+
+int biref_pe_grid_stress(const biref_pe_grid *g, double x, double y, biref_pe_stress *out)
+{
+    double fx = (x - g->x0) / g->dx, fy = (y - g->y0) / g->dy;
+    /* A sliver of tolerance keeps the frame's own edges inside. */
+    const double eps = 1e-9;
+    if (!(fx >= -eps && fx <= g->nx - 1 + eps && fy >= -eps && fy <= g->ny - 1 + eps)) return 0;
+    int i = (int)floor(fx), j = (int)floor(fy);
+    if (i < 0) i = 0;
+    if (j < 0) j = 0;
+    if (i > g->nx - 2) i = g->nx - 2;
+    if (j > g->ny - 2) j = g->ny - 2;
+    double t = fx - i, u = fy - j;
+    const double *a = g->v + 3 * ((size_t)j * g->nx + i), *b = a + 3, *c = a + 3 * (size_t)g->nx, *d = c + 3;
+    double w00 = (1 - t) * (1 - u), w10 = t * (1 - u), w01 = (1 - t) * u, w11 = t * u;
+    out->sxx = w00 * a[0] + w10 * b[0] + w01 * c[0] + w11 * d[0];
+    out->syy = w00 * a[1] + w10 * b[1] + w01 * c[1] + w11 * d[1];
+    out->txy = w00 * a[2] + w10 * b[2] + w01 * c[2] + w11 * d[2];
+    return 1;
+}

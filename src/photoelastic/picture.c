@@ -1,0 +1,52 @@
+/* Pictures of a plate in a polariscope at normal incidence: orthographic, the frame fills the
+ * image, k x k box-filtered samples per pixel, rows in parallel. */
+#include <math.h>
+#include <omp.h>
+
+#include "biref/photoelastic.h"
+
+biref_status biref_pe_render(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_field *f,
+                             const biref_pe_image_opts *opt, float *xyz)
+{
+    if (!s || !f || !opt || !xyz || opt->width < 1 || opt->height < 1 || opt->supersample < 1 ||
+        opt->supersample > 8)
+        return BIREF_ERR_INVALID;
+    if (s->light == BIREF_PE_WHITE && !sp) return BIREF_ERR_INVALID;
+    if (!(f->frame[1] > f->frame[0] && f->frame[3] > f->frame[2])) return BIREF_ERR_INVALID;
+    const int W = opt->width, H = opt->height, k = opt->supersample;
+    const double x0 = f->frame[0], sx = (f->frame[1] - f->frame[0]) / W;
+    const double y1 = f->frame[3], sy = (f->frame[3] - f->frame[2]) / H;
+    const double inv = 1.0 / (k * k);
+    const int mono = s->light == BIREF_PE_MONO;
+    const double tint[3] = {mono ? opt->tint[0] : 1.0, mono ? opt->tint[1] : 1.0, mono ? opt->tint[2] : 1.0};
+    /* Outside the material the polariscope is seen without a specimen. */
+    const double bg = biref_pe_polariscope_background(&s->pol);
+    const int threads = opt->threads > 0 ? opt->threads : omp_get_max_threads();
+
+    /* Every pixel is a pure function of its position, so the picture does not depend on the
+     * thread count or the schedule. */
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
+    for (int j = 0; j < H; j++) {
+        for (int i = 0; i < W; i++) {
+            double acc[3] = {0, 0, 0};
+            for (int b = 0; b < k; b++)
+                for (int a = 0; a < k; a++) {
+                    const double x = x0 + (i + (a + 0.5) / k) * sx;
+                    const double y = y1 - (j + (b + 0.5) / k) * sy;
+                    biref_pe_stress st;
+                    double c[3];
+                    if (biref_pe_field_stress(f, x, y, &st)) {
+                        biref_pe_principal p;
+                        biref_pe_principal_of(&st, &p);
+                        biref_pe_shade(s, sp, &p, c);
+                    } else {
+                        c[0] = c[1] = c[2] = bg;
+                    }
+                    for (int m = 0; m < 3; m++) acc[m] += c[m];
+                }
+            float *px = xyz + 3 * ((size_t)j * W + i);
+            for (int m = 0; m < 3; m++) px[m] = (float)(acc[m] * inv * tint[m]);
+        }
+    }
+    return BIREF_OK;
+}

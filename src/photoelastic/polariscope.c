@@ -1,0 +1,203 @@
+/* The polariscope: ideal input and output optics, the fast two-mode shading of a stressed plate
+ * at normal incidence, and the general-path reference it is verified against
+ * (docs/PHOTOELASTICITY.md, "Polariscope" and "Fast path"). */
+#include <math.h>
+#include <stdlib.h>
+
+#include "biref/photoelastic.h"
+
+biref_status biref_pe_polariscope_custom(const double stokes[4], const double complex P[2][2],
+                                         biref_pe_polariscope *out)
+{
+    if (biref_stokes_to_coherency(stokes, out->C) != BIREF_OK) return BIREF_ERR_INVALID;
+    /* Recover u from P[k][o] = conj(u_k) u_o (up to a global phase, which no intensity sees):
+     * take the larger diagonal element for the real component. */
+    double p00 = creal(P[0][0]), p11 = creal(P[1][1]);
+    double complex u0, u1;
+    if (!(p00 >= 0.0 && p11 >= 0.0)) return BIREF_ERR_INVALID;
+    if (p00 >= p11) {
+        u0 = sqrt(p00);
+        if (creal(u0) <= 0.0) return BIREF_ERR_INVALID;
+        u1 = P[0][1] / u0;
+    } else {
+        u1 = sqrt(p11);
+        u0 = conj(P[0][1]) / u1;
+    }
+    double complex u[2] = {u0, u1};
+    for (int k = 0; k < 2; k++)
+        for (int o = 0; o < 2; o++)
+            if (!(cabs(conj(u[k]) * u[o] - P[k][o]) <= 1e-9)) return BIREF_ERR_INVALID;
+    if (fabs(cabs(u0) * cabs(u0) + cabs(u1) * cabs(u1) - 1.0) > 1e-9) return BIREF_ERR_INVALID;
+    for (int k = 0; k < 2; k++)
+        for (int o = 0; o < 2; o++) out->P[k][o] = P[k][o];
+    out->u[0] = u0;
+    out->u[1] = u1;
+    return BIREF_OK;
+}
+
+void biref_pe_polariscope_make(biref_pe_polariscope_kind kind, biref_pe_field_type field, double psi,
+                               biref_pe_polariscope *out)
+{
+    double complex P[2][2];
+    if (kind == BIREF_PE_PLANE) {
+        /* Linear light at psi: S1 = cos 2 psi, S2 = sin 2 psi (docs/PHYSICS.md §5 convention). */
+        const double stokes[4] = {1.0, cos(2.0 * psi), sin(2.0 * psi), 0.0};
+        biref_analyzer_linear(field == BIREF_PE_DARK ? psi + 0.5 * M_PI : psi, P);
+        (void)biref_pe_polariscope_custom(stokes, P, out);
+    } else {
+        const double stokes[4] = {1.0, 0.0, 0.0, 1.0};
+        biref_analyzer_circular(field == BIREF_PE_DARK ? -1 : +1, P);
+        (void)biref_pe_polariscope_custom(stokes, P, out);
+    }
+}
+
+double biref_pe_polariscope_background(const biref_pe_polariscope *pol)
+{
+    /* I = sum_ij C_ij (P P^H)_ij = sum_ij C_ij conj(u_i) u_j for a projector P = conj(u) u^T. */
+    double complex s = 0;
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++) s += pol->C[i][j] * conj(pol->u[i]) * pol->u[j];
+    return creal(s);
+}
+
+double biref_pe_retardation_nm(const biref_pe_setup *s, const biref_pe_principal *p)
+{
+    return s->material.C_per_Pa * (p->s1 - p->s2) * s->thickness * 1e9;
+}
+
+/* Single-pass amplitude tau = t01 t10 and internal reflectance rho^2 of an isotropic slab of
+ * index n in a medium eta at normal incidence (Fresnel; s and p coincide there). */
+static inline void airy_coeffs(double n, double eta, double *tau, double *rho2)
+{
+    double sum = n + eta, r = (n - eta) / sum;
+    *tau = 4.0 * n * eta / (sum * sum);
+    *rho2 = r * r;
+}
+
+/* Largest m kept in the white-light series of <t_e conj t_o>: terms until q^m < 1e-10. */
+#define PE_MAX_ORDER 6
+
+void biref_pe_shade(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p, double xyz[3])
+{
+    /* Principal directions a (axis, e-mode) and b (o-mode) in the s/p basis. cos phi, sin phi by
+     * the half-angle formulas: phi in (-pi/2, pi/2] has cos phi >= 0 and sin phi of the sign of
+     * sin 2 phi (the sign of a or b never matters: each appears twice below). */
+    const double ca = sqrt(fmax(0.0, 0.5 * (1.0 + p->cos2phi)));
+    const double sa = copysign(sqrt(fmax(0.0, 0.5 * (1.0 - p->cos2phi))), p->sin2phi);
+    const double a[2] = {ca, sa}, b[2] = {-sa, ca};
+    const biref_pe_polariscope *pol = &s->pol;
+    /* J_T = t_e a a^T + t_o b b^T (row-vector convention, out = in J_T): the two modes do not mix
+     * at normal incidence with the axis in the plane. With the analyzer P = conj(u) u^T the
+     * detected field is (J_T conj(u)) u, so the intensity is v^T C conj(v) with
+     * v = t_e a (a . conj u) + t_o b (b . conj u), i.e.
+     *   I = alpha |t_e|^2 + beta |t_o|^2 + 2 Re(gamma t_e conj(t_o)),
+     *   alpha = |a.u*|^2 a^T C a, beta = |b.u*|^2 b^T C b, gamma = (a.u*) conj(b.u*) a^T C b. */
+    const double complex au = a[0] * conj(pol->u[0]) + a[1] * conj(pol->u[1]);
+    const double complex bu = b[0] * conj(pol->u[0]) + b[1] * conj(pol->u[1]);
+    double complex aCa = 0, bCb = 0, aCb = 0;
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++) {
+            aCa += pol->C[i][j] * a[i] * a[j];
+            bCb += pol->C[i][j] * b[i] * b[j];
+            aCb += pol->C[i][j] * a[i] * b[j];
+        }
+    const double alpha = creal(au * conj(au)) * creal(aCa);
+    const double beta = creal(bu * conj(bu)) * creal(bCb);
+    const double complex gamma = au * conj(bu) * aCb;
+
+    /* Indices of the two modes (the model of docs/PHOTOELASTICITY.md) and their Airy series
+     * t_x = tau_x e^{i k n_x h} sum_m rho_x^{2m} e^{2 i k m n_x h}. Orders m != m' differ in optical
+     * path by about 2 n h (millimetres): far beyond the coherence length of a white or spectral-
+     * lamp source, their interference averages out (for white light it is the table value
+     * S(cos k 2nh) ~ 1e-6, docs). Within one order the e and o paths differ by (2m + 1) delta. */
+    const double n_o = s->material.n0;
+    const double dn = s->material.C_per_Pa * (p->s1 - p->s2);
+    const double n_e = n_o + dn;
+    const double delta_nm = dn * s->thickness * 1e9;
+    double tau_e, tau_o, rho2_e, rho2_o;
+    airy_coeffs(n_e, s->eta_i, &tau_e, &rho2_e);
+    airy_coeffs(n_o, s->eta_i, &tau_o, &rho2_o);
+    /* <|t_x|^2> = tau_x^2 sum_m rho_x^{4m} = tau_x^2 / (1 - rho_x^4). */
+    const double te2 = tau_e * tau_e / (1.0 - rho2_e * rho2_e);
+    const double to2 = tau_o * tau_o / (1.0 - rho2_o * rho2_o);
+    const double incoherent = alpha * te2 + beta * to2;
+    const double q = rho2_e * rho2_o; /* weight ratio of consecutive orders in <t_e conj t_o> */
+    const double tt = tau_e * tau_o;
+
+    if (s->light == BIREF_PE_MONO) {
+        /* <t_e conj t_o> = tau_e tau_o sum_m q^m e^{i k (2m+1) delta} = tau_e tau_o e^{ik delta} / (1 - q e^{2ik delta}). */
+        const double ph = 2.0 * M_PI * delta_nm / s->lambda_nm;
+        const double complex z = cexp(I * ph);
+        const double complex cross = tt * z / (1.0 - q * z * z);
+        const double v = incoherent + 2.0 * creal(gamma * cross);
+        xyz[0] = xyz[1] = xyz[2] = v;
+        return;
+    }
+    /* White light: band integrals S(e^{i k D}) = S(cos) + i S(sin) from the spectral table. */
+    double cross_re[3] = {0, 0, 0}, cross_im[3] = {0, 0, 0};
+    double w = tt;
+    for (int m = 0; m <= PE_MAX_ORDER; m++) {
+        double c[3], si[3];
+        biref_spectral_phase_integrals(sp, (2.0 * m + 1.0) * delta_nm, c, si);
+        for (int j = 0; j < 3; j++) {
+            cross_re[j] += w * c[j];
+            cross_im[j] += w * si[j];
+        }
+        w *= q;
+        if (w < 1e-10 * tt) break;
+    }
+    for (int j = 0; j < 3; j++)
+        xyz[j] = incoherent + 2.0 * (creal(gamma) * cross_re[j] - cimag(gamma) * cross_im[j]);
+}
+
+/* |e J P|^2 summed over the coherency C: sum_{i,j,o} C_ij (J P)_io conj((J P)_jo). */
+static double detect(const biref_pe_polariscope *pol, const biref_jones *J)
+{
+    double complex JP[2][2];
+    for (int i = 0; i < 2; i++)
+        for (int o = 0; o < 2; o++) JP[i][o] = J->m[i][0] * pol->P[0][o] + J->m[i][1] * pol->P[1][o];
+    double complex sum = 0;
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++)
+            for (int o = 0; o < 2; o++) sum += pol->C[i][j] * JP[i][o] * conj(JP[j][o]);
+    return creal(sum);
+}
+
+biref_status biref_pe_shade_general(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p,
+                                    int jitter, double span_nm, double xyz[3])
+{
+    biref_slab slab = biref_pe_slab_at(&s->material, s->thickness, s->eta_i, p);
+    biref_slab_state st;
+    biref_status r;
+    if (s->light == BIREF_PE_WHITE) {
+        if (!sp) return BIREF_ERR_INVALID;
+        if ((r = biref_slab_prepare(&slab, 0.0, &st)) != BIREF_OK) return r;
+        biref_expansion_opts opts;
+        biref_expansion_opts_default(&opts);
+        return biref_spectrum_expansion_polarized(sp, &st, BIREF_TRANSMISSION, s->pol.C, s->pol.P, &opts, xyz, NULL);
+    }
+    if (jitter < 1) jitter = 1;
+    double sum = 0.0;
+    const double h0 = slab.thickness_nm;
+    for (int k = 0; k < jitter; k++) {
+        slab.thickness_nm = jitter == 1 ? h0 : h0 + span_nm * ((k + 0.5) / jitter - 0.5);
+        if ((r = biref_slab_prepare(&slab, 0.0, &st)) != BIREF_OK) return r;
+        biref_jones T;
+        biref_slab_jones_at(&st, s->lambda_nm, &T, NULL);
+        sum += detect(&s->pol, &T);
+    }
+    xyz[0] = xyz[1] = xyz[2] = sum / jitter;
+    return BIREF_OK;
+}
+
+biref_status biref_pe_shade_numeric(const biref_pe_setup *s, const biref_numeric_plan *plan,
+                                    const biref_pe_principal *p, double xyz[3])
+{
+    if (s->light != BIREF_PE_WHITE || !plan) return BIREF_ERR_INVALID;
+    biref_slab slab = biref_pe_slab_at(&s->material, s->thickness, s->eta_i, p);
+    biref_slab_state st;
+    biref_status r = biref_slab_prepare(&slab, 0.0, &st);
+    if (r != BIREF_OK) return r;
+    biref_spectrum_numeric_polarized(plan, &st, BIREF_TRANSMISSION, s->pol.C, s->pol.P, xyz);
+    return BIREF_OK;
+}

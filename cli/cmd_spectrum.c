@@ -1,5 +1,6 @@
 /* biref spectrum: band-normalised XYZ of one slab at one angle (paper §5), by the analytic
- * approximation (eq. 26), by N-sample numeric integration of eq. 17, or by the ground truth. */
+ * approximation (eq. 26), by N-sample numeric integration of eq. 17, by the ground truth, or by
+ * the exact integral of the path-group expansion; any incident polarisation and analyzer. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -7,6 +8,7 @@
 
 #include "cli_common.h"
 #include "cli_light.h"
+#include "cli_polarizer.h"
 #include "commands.h"
 #include "json_out.h"
 
@@ -27,14 +29,22 @@ static void help(void)
            "band-normalised CIE XYZ (a flat spectrum gives 1,1,1; white E) for each input/output\n"
            "polarisation pair, and the mixed colour for a given incident light and analyzer.\n\n"
            "Options:\n" CLI_SLAB_HELP
-           "  --method M           analytic (default; paper eq. 26), numeric (N samples of eq. 17)\n"
-           "                       or ground-truth (numeric, 16384 samples)\n"
+           "  --method M           analytic (default; paper eq. 26), numeric (N samples of eq. 17),\n"
+           "                       ground-truth (numeric, 16384 samples) or expansion (exact integral\n"
+           "                       of the path-group expansion, docs/PHYSICS.md §5)\n"
            "  --samples N          samples of the numeric method, N >= 1 (default 64; numeric only)\n"
+           "  --order N            expansion: orders summed coherently (default adaptive)\n"
+           "  --tolerance E        expansion: adaptive error bound, relative (default 1e-3)\n"
            "  --cmf C              cie1931 (default, tabulated) or wyman2013 (analytic fit)\n"
            "  --range-nm MIN,MAX   integration band in nm (default 380,700)\n"
            "  --polarization P     incident light: s, p, unpolarized (default) or S,P weights\n"
            "                       (normalised to sum 1, e.g. 0.75,0.25)\n"
-           "  --analyzer A         none (default), s or p: polarisation passed to the detector\n"
+           "  --polarizer P        fully polarised input: linear:DEG (from s towards p) or\n"
+           "                       circular:+1|-1 (sign of S3); replaces --polarization\n"
+           "  --stokes S0,S1,S2,S3 any (partially) polarised input in the s/p basis\n"
+           "  --analyzer A         none (default), s, p, linear:DEG or circular:+1|-1\n"
+           "                       (linear/circular/--polarizer/--stokes need numeric, ground-truth\n"
+           "                       or expansion: the paper's method handles s/p only)\n"
            "  --json               machine-readable output\n"
            "  -h, --help           this help\n\n"
            "sRGB values are encoded (non-linear) and not clamped: out-of-gamut colours fall outside\n"
@@ -43,7 +53,19 @@ static void help(void)
            "                --thickness-um 20 --theta-deg 30 --polarization 0.02,0.98 --analyzer s\n");
 }
 
-enum { OPT_METHOD = OPT_SLAB_LAST + 1, OPT_SAMPLES, OPT_CMF, OPT_RANGE, OPT_POL, OPT_ANALYZER, OPT_JSON };
+enum {
+    OPT_METHOD = OPT_SLAB_LAST + 1,
+    OPT_SAMPLES,
+    OPT_CMF,
+    OPT_RANGE,
+    OPT_POL,
+    OPT_ANALYZER,
+    OPT_JSON,
+    OPT_ORDER,
+    OPT_TOLERANCE,
+    OPT_POLARIZER,
+    OPT_STOKES
+};
 
 static cJSON *xyz_pairs_json(const double X[2][2][3])
 {
@@ -75,7 +97,19 @@ int cmd_spectrum(int argc, char **argv)
     cli_light light;
     cli_light_default(&light);
     int json = 0;
+    biref_expansion_opts eopts;
+    biref_expansion_opts_default(&eopts);
+    int have_order = 0, have_tol = 0;
+    /* General polarisation: Stokes input and/or an analyzer projector (NULL-able). */
+    int general_in = 0, general_an = 0;
+    double stokes[4] = {1, 0, 0, 0};
+    double complex P_an[2][2];
+    char pol_text[64] = "", an_text[64] = "";
     static const struct option longopts[] = {CLI_SLAB_LONG_OPTIONS,
+                                             {"order", required_argument, 0, OPT_ORDER},
+                                             {"tolerance", required_argument, 0, OPT_TOLERANCE},
+                                             {"polarizer", required_argument, 0, OPT_POLARIZER},
+                                             {"stokes", required_argument, 0, OPT_STOKES},
                                              {"method", required_argument, 0, OPT_METHOD},
                                              {"samples", required_argument, 0, OPT_SAMPLES},
                                              {"cmf", required_argument, 0, OPT_CMF},
@@ -96,7 +130,8 @@ int cmd_spectrum(int argc, char **argv)
         case 'h': help(); return CLI_EXIT_OK;
         case OPT_METHOD:
             if (biref_method_from_name(optarg, &method) != BIREF_OK)
-                return cli_error(CMD, "--method: expected analytic, numeric or ground-truth, got '%s'", optarg),
+                return cli_error(CMD, "--method: expected analytic, numeric, ground-truth or expansion, got '%s'",
+                                 optarg),
                        CLI_EXIT_USAGE;
             break;
         case OPT_SAMPLES:
@@ -116,8 +151,39 @@ int cmd_spectrum(int argc, char **argv)
         case OPT_POL:
             if (cli_parse_polarization(CMD, "--polarization", optarg, light.w_in)) return CLI_EXIT_USAGE;
             break;
-        case OPT_ANALYZER:
-            if (cli_parse_analyzer(CMD, "--analyzer", optarg, light.mask)) return CLI_EXIT_USAGE;
+        case OPT_ANALYZER: {
+            int g = cli_parse_general_analyzer(CMD, "--analyzer", optarg, P_an);
+            if (g < 0) return CLI_EXIT_USAGE;
+            if (g > 0) {
+                general_an = 1;
+                snprintf(an_text, sizeof an_text, "%s", optarg);
+            } else if (cli_parse_analyzer(CMD, "--analyzer", optarg, light.mask)) {
+                return CLI_EXIT_USAGE;
+            }
+            break;
+        }
+        case OPT_POLARIZER:
+            if (cli_parse_polarizer_state(CMD, "--polarizer", optarg, stokes)) return CLI_EXIT_USAGE;
+            general_in = 1;
+            snprintf(pol_text, sizeof pol_text, "%s", optarg);
+            break;
+        case OPT_STOKES:
+            if (cli_parse_stokes(CMD, "--stokes", optarg, stokes)) return CLI_EXIT_USAGE;
+            general_in = 1;
+            snprintf(pol_text, sizeof pol_text, "stokes:%s", optarg);
+            break;
+        case OPT_ORDER: {
+            long v;
+            if (cli_parse_int(CMD, "--order", optarg, 0, 8, &v)) return CLI_EXIT_USAGE;
+            eopts.order = (int)v;
+            have_order = 1;
+            break;
+        }
+        case OPT_TOLERANCE:
+            if (cli_parse_double(CMD, "--tolerance", optarg, &eopts.tolerance)) return CLI_EXIT_USAGE;
+            if (!(eopts.tolerance > 0.0 && eopts.tolerance < 1.0))
+                return cli_error(CMD, "--tolerance: must be in (0, 1), got %g", eopts.tolerance), CLI_EXIT_USAGE;
+            have_tol = 1;
             break;
         case OPT_JSON: json = 1; break;
         default: cli_getopt_error(CMD, c, argv); return CLI_EXIT_USAGE;
@@ -129,6 +195,25 @@ int cmd_spectrum(int argc, char **argv)
     if (samples && method != BIREF_METHOD_NUMERIC)
         return cli_error(CMD, "--samples: only valid with --method numeric (method is %s)", biref_method_name(method)),
                CLI_EXIT_USAGE;
+    if ((have_order || have_tol) && method != BIREF_METHOD_EXPANSION)
+        return cli_error(CMD, "%s: only valid with --method expansion", have_order ? "--order" : "--tolerance"),
+               CLI_EXIT_USAGE;
+    if (have_order && have_tol) return cli_error(CMD, "--order and --tolerance exclude each other"), CLI_EXIT_USAGE;
+    const int general = general_in || general_an;
+    if (general && method == BIREF_METHOD_ANALYTIC)
+        return cli_error(CMD, "%s needs --method numeric, ground-truth or expansion (the paper's method handles s/p only)",
+                         general_in ? "--polarizer/--stokes" : "--analyzer linear/circular"),
+               CLI_EXIT_USAGE;
+    if (!general_in) {
+        /* The s/p fractions as a (diagonal) Stokes vector, for the general path. */
+        stokes[0] = 1.0;
+        stokes[1] = light.w_in[0] - light.w_in[1];
+    }
+    if (!general_an) {
+        memset(P_an, 0, sizeof P_an);
+        P_an[0][0] = light.mask[0];
+        P_an[1][1] = light.mask[1];
+    }
     if (cli_slab_opts_finish(CMD, &so)) return CLI_EXIT_USAGE;
     int n_samples = method == BIREF_METHOD_NUMERIC ? (samples ? (int)samples : DEFAULT_NUMERIC_SAMPLES)
                     : method == BIREF_METHOD_GROUND_TRUTH ? BIREF_GROUND_TRUTH_SAMPLES : 0;
@@ -148,6 +233,10 @@ int cmd_spectrum(int argc, char **argv)
     if (s != BIREF_OK) return cli_error(CMD, "spectral context: %s", biref_status_string(s)), CLI_EXIT_FAIL;
 
     biref_spectrum spec;
+    double T_xyz[3], R_xyz[3], T_rgb[3], R_rgb[3];
+    double complex C_in[2][2];
+    biref_stokes_to_coherency(stokes, C_in); /* validated when parsed */
+    int order_used[2] = {-1, -1};
     if (n_samples) {
         biref_numeric_plan *plan = NULL;
         s = biref_numeric_plan_create(sp, n_samples, &plan);
@@ -156,21 +245,38 @@ int cmd_spectrum(int argc, char **argv)
             return cli_error(CMD, "numeric plan: %s", biref_status_string(s)), CLI_EXIT_FAIL;
         }
         biref_spectrum_numeric(plan, &st, &spec);
+        if (general) {
+            biref_spectrum_numeric_polarized(plan, &st, BIREF_TRANSMISSION, (const double complex(*)[2])C_in,
+                                             (const double complex(*)[2])P_an, T_xyz);
+            biref_spectrum_numeric_polarized(plan, &st, BIREF_REFLECTION, (const double complex(*)[2])C_in,
+                                             (const double complex(*)[2])P_an, R_xyz);
+        }
         biref_numeric_plan_destroy(plan);
+    } else if (method == BIREF_METHOD_EXPANSION) {
+        s = biref_spectrum_expansion(sp, &st, &eopts, &spec);
+        for (int w = 0; w < 2 && s == BIREF_OK; w++)
+            s = biref_spectrum_expansion_polarized(sp, &st, w, (const double complex(*)[2])C_in,
+                                                   (const double complex(*)[2])P_an, &eopts, w ? R_xyz : T_xyz,
+                                                   &order_used[w]);
+        if (s != BIREF_OK) {
+            biref_spectral_destroy(sp);
+            return cli_error(CMD, "expansion: %s", biref_status_string(s)), CLI_EXIT_FAIL;
+        }
     } else {
         biref_spectrum_analytic(sp, &st, &spec);
     }
     biref_spectral_destroy(sp);
     if (!all_finite(&spec)) return cli_error(CMD, "numerical failure (non-finite result)"), CLI_EXIT_FAIL;
 
-    double T_xyz[3], R_xyz[3], T_rgb[3], R_rgb[3];
-    biref_spectrum_mix(spec.T, light.w_in, light.mask, T_xyz);
-    biref_spectrum_mix(spec.R, light.w_in, light.mask, R_xyz);
+    if (!general && method != BIREF_METHOD_EXPANSION) {
+        biref_spectrum_mix(spec.T, light.w_in, light.mask, T_xyz);
+        biref_spectrum_mix(spec.R, light.w_in, light.mask, R_xyz);
+    }
     biref_xyz_to_srgb(T_xyz, T_rgb);
     biref_xyz_to_srgb(R_xyz, R_rgb);
     char polbuf[48];
-    const char *pol_name = cli_polarization_name(light.w_in, polbuf, sizeof polbuf);
-    const char *an_name = cli_analyzer_name(light.mask);
+    const char *pol_name = general_in ? pol_text : cli_polarization_name(light.w_in, polbuf, sizeof polbuf);
+    const char *an_name = general_an ? an_text : cli_analyzer_name(light.mask);
     const char *cmf_name = biref_cmf_kind_name(cfg.cmf);
 
     if (json) {
@@ -195,8 +301,18 @@ int cmd_spectrum(int argc, char **argv)
         cJSON_AddItemToObject(root, "R", xyz_pairs_json(spec.R));
         cJSON *mx = cJSON_AddObjectToObject(root, "mixed");
         cJSON *pol = cJSON_AddObjectToObject(mx, "polarization");
-        cJSON_AddNumberToObject(pol, "s", light.w_in[0]);
-        cJSON_AddNumberToObject(pol, "p", light.w_in[1]);
+        if (!general_in) {
+            cJSON_AddNumberToObject(pol, "s", light.w_in[0]);
+            cJSON_AddNumberToObject(pol, "p", light.w_in[1]);
+        } else {
+            cJSON_AddStringToObject(pol, "state", pol_text);
+        }
+        cJSON_AddItemToObject(pol, "stokes", cJSON_CreateDoubleArray(stokes, 4));
+        if (method == BIREF_METHOD_EXPANSION) {
+            cJSON *ord = cJSON_AddObjectToObject(root, "expansion_order");
+            cJSON_AddNumberToObject(ord, "T", order_used[0]);
+            cJSON_AddNumberToObject(ord, "R", order_used[1]);
+        }
         cJSON_AddStringToObject(mx, "analyzer", an_name);
         cJSON_AddItemToObject(mx, "T_xyz", json_vec3(T_xyz));
         cJSON_AddItemToObject(mx, "R_xyz", json_vec3(R_xyz));
@@ -225,8 +341,12 @@ int cmd_spectrum(int argc, char **argv)
             snprintf(r, sizeof r, "%.6f %.6f %.6f", spec.R[i][o][0], spec.R[i][o][1], spec.R[i][o][2]);
             printf("  %s -> %s   %-30s %-30s\n", SP[i], SP[o], t, r);
         }
-    printf("\nMixed: polarization %s (s %.4g, p %.4g), analyzer %s\n", pol_name, light.w_in[0], light.w_in[1],
-           an_name);
+    if (general_in)
+        printf("\nMixed: polarization %s (Stokes %.4g, %.4g, %.4g, %.4g), analyzer %s\n", pol_name, stokes[0],
+               stokes[1], stokes[2], stokes[3], an_name);
+    else
+        printf("\nMixed: polarization %s (s %.4g, p %.4g), analyzer %s\n", pol_name, light.w_in[0], light.w_in[1],
+               an_name);
     const int tty = isatty(STDOUT_FILENO);
     const char *lbl[2] = {"T", "R"};
     const double *xyz[2] = {T_xyz, R_xyz}, *rgb[2] = {T_rgb, R_rgb};

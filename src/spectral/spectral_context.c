@@ -25,12 +25,13 @@ void biref_spectral_config_default(biref_spectral_config *cfg)
     cfg->lambda_max_nm = BIREF_CMF_DEFAULT_LMAX_NM;
 }
 
-static const char *const METHOD_NAMES[] = {"analytic", "numeric", "ground-truth"};
+static const char *const METHOD_NAMES[] = {"analytic", "numeric", "ground-truth", "expansion"};
+#define N_METHODS ((int)(sizeof METHOD_NAMES / sizeof METHOD_NAMES[0]))
 
 biref_status biref_method_from_name(const char *name, biref_method *out)
 {
     if (!name || !out) return BIREF_ERR_INVALID;
-    for (int i = 0; i < 3; i++)
+    for (int i = 0; i < N_METHODS; i++)
         if (!strcmp(name, METHOD_NAMES[i])) {
             *out = (biref_method)i;
             return BIREF_OK;
@@ -40,7 +41,7 @@ biref_status biref_method_from_name(const char *name, biref_method *out)
 
 const char *biref_method_name(biref_method m)
 {
-    return (m >= 0 && (int)m < 3) ? METHOD_NAMES[m] : NULL;
+    return ((int)m >= 0 && (int)m < N_METHODS) ? METHOD_NAMES[m] : NULL;
 }
 
 const biref_cmf_band *biref_spectral_band(const biref_spectral *sp) { return &sp->band; }

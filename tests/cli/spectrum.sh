@@ -72,4 +72,20 @@ expect_error "theta 90" spectrum "${slab[@]}" --theta-deg 90
 expect_error "unknown option" spectrum "${slab[@]}" --frobnicate
 expect_error "missing value" spectrum "${slab[@]}" --method
 expect_error "stray argument" spectrum "${slab[@]}" extra
+
+# Beyond the paper: the path-group expansion and general polarisers.
+expect_ok "expansion" spectrum "${slab[@]}" --method expansion --json
+expect_grep "expansion order reported" '"expansion_order"'
+expect_ok "crossed linear polarisers" spectrum "${slab[@]}" --method expansion --polarizer linear:30 --analyzer linear:120
+expect_ok "circular analyzer, numeric" spectrum "${slab[@]}" --method numeric --samples 256 --stokes 1,0.2,0.3,0.4 --analyzer circular:-1
+expect_ok "fixed order" spectrum "${slab[@]}" --method expansion --order 3
+expect_error "general polariser with analytic" spectrum "${slab[@]}" --polarizer linear:10
+expect_error "circular analyzer with analytic" spectrum "${slab[@]}" --analyzer circular:+1
+expect_error "unphysical stokes" spectrum "${slab[@]}" --method expansion --stokes 1,1,1,0
+expect_error "bad handedness" spectrum "${slab[@]}" --method expansion --polarizer circular:2
+expect_error "bad linear angle" spectrum "${slab[@]}" --method expansion --analyzer linear:abc
+expect_error "order without expansion" spectrum "${slab[@]}" --order 2
+expect_error "order too high" spectrum "${slab[@]}" --method expansion --order 99
+expect_error "tolerance zero" spectrum "${slab[@]}" --method expansion --tolerance 0
+expect_error "order and tolerance" spectrum "${slab[@]}" --method expansion --order 2 --tolerance 1e-3
 finish

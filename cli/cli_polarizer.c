@@ -1,0 +1,69 @@
+#include "cli_polarizer.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "biref/biref.h"
+#include "cli_common.h"
+
+/* Parses "+1" / "-1" (also "1"). */
+static int parse_handedness(const char *cmd, const char *opt, const char *text, int *h)
+{
+    if (!strcmp(text, "+1") || !strcmp(text, "1")) {
+        *h = 1;
+        return 0;
+    }
+    if (!strcmp(text, "-1")) {
+        *h = -1;
+        return 0;
+    }
+    cli_error(cmd, "%s: circular handedness must be +1 or -1 (sign of S3), got '%s'", opt, text);
+    return -1;
+}
+
+int cli_parse_polarizer_state(const char *cmd, const char *opt, const char *text, double S[4])
+{
+    if (!strncmp(text, "linear:", 7)) {
+        double deg;
+        if (cli_parse_double(cmd, opt, text + 7, &deg)) return -1;
+        double a = deg * M_PI / 180.0;
+        S[0] = 1.0, S[1] = cos(2 * a), S[2] = sin(2 * a), S[3] = 0.0;
+        return 0;
+    }
+    if (!strncmp(text, "circular:", 9)) {
+        int h;
+        if (parse_handedness(cmd, opt, text + 9, &h)) return -1;
+        S[0] = 1.0, S[1] = 0.0, S[2] = 0.0, S[3] = h;
+        return 0;
+    }
+    cli_error(cmd, "%s: expected linear:DEG or circular:+1|-1, got '%s'", opt, text);
+    return -1;
+}
+
+int cli_parse_stokes(const char *cmd, const char *opt, const char *text, double S[4])
+{
+    if (cli_parse_list(cmd, opt, text, S, 4)) return -1;
+    double complex C[2][2];
+    if (biref_stokes_to_coherency(S, C) != BIREF_OK) {
+        cli_error(cmd, "%s: not a physical Stokes vector (need S0 >= 0 and S1^2+S2^2+S3^2 <= S0^2)", opt);
+        return -1;
+    }
+    return 0;
+}
+
+int cli_parse_general_analyzer(const char *cmd, const char *opt, const char *text, double complex P[2][2])
+{
+    if (!strncmp(text, "linear:", 7)) {
+        double deg;
+        if (cli_parse_double(cmd, opt, text + 7, &deg)) return -1;
+        biref_analyzer_linear(deg * M_PI / 180.0, P);
+        return 1;
+    }
+    if (!strncmp(text, "circular:", 9)) {
+        int h;
+        if (parse_handedness(cmd, opt, text + 9, &h)) return -1;
+        biref_analyzer_circular(h, P);
+        return 1;
+    }
+    return 0;
+}

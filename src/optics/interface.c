@@ -19,18 +19,29 @@ static void tangential(const biref_modes *m, int idx, double complex f[4])
     f[3] = m->H[idx][2];
 }
 
+/* |re| + |im|: a pivot magnitude without the square root of cabs (within a factor sqrt 2). */
+static inline double l1(double complex z) { return fabs(creal(z)) + fabs(cimag(z)); }
+
+/* 1 / z without the overflow-guarded library division (pivots here are O(1) field values). */
+static inline double complex recip(double complex z)
+{
+    double a = creal(z), b = cimag(z), n = 1.0 / (a * a + b * b);
+    return a * n - I * (b * n);
+}
+
 /* Solves A X = B in place for 4 right-hand sides by Gaussian elimination with partial
  * pivoting (a fixed 4x4 system on the per-sample hot path: no allocation, no library call). */
 static biref_status solve4(double complex A[4][4], double complex B[4][4])
 {
     double scale = 0.0;
     for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++) scale = fmax(scale, cabs(A[i][j]));
+        for (int j = 0; j < 4; j++) scale = fmax(scale, l1(A[i][j]));
+    double complex inv_diag[4];
     for (int c = 0; c < 4; c++) {
         int p = c;
-        double best = cabs(A[c][c]);
+        double best = l1(A[c][c]);
         for (int r = c + 1; r < 4; r++)
-            if (cabs(A[r][c]) > best) best = cabs(A[r][c]), p = r;
+            if (l1(A[r][c]) > best) best = l1(A[r][c]), p = r;
         if (!(best > 1e-13 * scale)) return BIREF_ERR_SINGULAR;
         if (p != c)
             for (int j = 0; j < 4; j++) {
@@ -41,7 +52,8 @@ static biref_status solve4(double complex A[4][4], double complex B[4][4])
                 B[c][j] = B[p][j];
                 B[p][j] = t;
             }
-        double complex inv = 1.0 / A[c][c];
+        double complex inv = recip(A[c][c]);
+        inv_diag[c] = inv;
         for (int r = c + 1; r < 4; r++) {
             double complex f = A[r][c] * inv;
             if (f == 0.0) continue;
@@ -49,14 +61,12 @@ static biref_status solve4(double complex A[4][4], double complex B[4][4])
             for (int j = 0; j < 4; j++) B[r][j] -= f * B[c][j];
         }
     }
-    for (int c = 3; c >= 0; c--) {
-        double complex inv = 1.0 / A[c][c];
+    for (int c = 3; c >= 0; c--)
         for (int j = 0; j < 4; j++) {
             double complex s = B[c][j];
             for (int k = c + 1; k < 4; k++) s -= A[c][k] * B[k][j];
-            B[c][j] = s * inv;
+            B[c][j] = s * inv_diag[c];
         }
-    }
     return BIREF_OK;
 }
 

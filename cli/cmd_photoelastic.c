@@ -190,7 +190,7 @@ int cmd_photoelastic(int argc, char **argv)
                                              {"view-mm", required_argument, 0, OPT_VIEW},
                                              {"help", no_argument, 0, 'h'},
                                              {0, 0, 0, 0}};
-    int kind = -1, json = 0, tint = 0, have_profile = 0, have_lambda = 0;
+    int kind = -1, json = 0, tint = 0, have_profile = 0, have_lambda = 0, have_samples = 0;
     const char *grid_path = NULL, *out = NULL, *material_name = "polycarbonate";
     double thickness_mm = NAN, n0 = NAN, c_brew = NAN, eta_i = 1.0, polarizer_deg = 0.0, lambda = 589.0,
            exposure = 1.0;
@@ -323,6 +323,7 @@ int cmd_photoelastic(int argc, char **argv)
             break;
         case OPT_SAMPLES:
             if (cli_parse_int(CMD, "--samples", optarg, 2, 100000, &samples)) return CLI_EXIT_USAGE;
+            have_samples = 1;
             break;
         case OPT_JSON: json = 1; break;
         case OPT_VIEW:
@@ -348,7 +349,7 @@ int cmd_photoelastic(int argc, char **argv)
         return cli_error(CMD, "--lambda-nm needs --light mono (white-light fringe orders are quoted at %.0f nm)",
                          WHITE_FRINGE_LAMBDA_NM),
                CLI_EXIT_USAGE;
-    if (samples != 201 && !have_profile) return cli_error(CMD, "--samples needs --profile"), CLI_EXIT_USAGE;
+    if (have_samples && !have_profile) return cli_error(CMD, "--samples needs --profile"), CLI_EXIT_USAGE;
 
     biref_pe_setup setup;
     memset(&setup, 0, sizeof setup);

@@ -254,6 +254,10 @@ static void test_grid(void)
     snprintf(t, sizeof t, "%s0,0,1,2,3\n1,0,1,2,3\n0,1,1,2,3\n1,1,1,2,3", H);
     CHECK(parse(t, &g, msg) == BIREF_OK);
     biref_pe_grid_destroy(g);
+    /* A byte-order mark and quoted column names (spreadsheet exports) are accepted. */
+    snprintf(t, sizeof t, "\xEF\xBB\xBF\"x_mm\",\"y_mm\",sxx_MPa,syy_MPa,txy_MPa\n0,0,1,2,3\n1,0,1,2,3\n0,1,1,2,3\n1,1,1,2,3\n");
+    CHECK(parse(t, &g, msg) == BIREF_OK);
+    biref_pe_grid_destroy(g);
     /* Missing files are I/O errors. */
     CHECK(biref_pe_grid_load("/nonexistent/stress.csv", &g, msg, sizeof msg) == BIREF_ERR_IO);
     CHECK(strstr(msg, "cannot read") != NULL);

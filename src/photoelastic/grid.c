@@ -170,6 +170,8 @@ biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **o
     row *rows = NULL;
     biref_status st = BIREF_OK;
     const char *p = text, *end = text + len;
+    /* Spreadsheets often start a UTF-8 CSV with a byte-order mark. */
+    if (len >= 3 && !memcmp(text, "\xEF\xBB\xBF", 3)) p += 3;
     while (p < end && st == BIREF_OK) {
         const char *nl = memchr(p, '\n', (size_t)(end - p));
         int complete = nl != NULL; /* a line without '\n' ends the file */
@@ -196,6 +198,11 @@ biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **o
             }
             for (int i = 0; i < nf && st == BIREF_OK; i++) {
                 int which = -1;
+                /* Accept quoted column names ("x_mm"), as some spreadsheets write them. */
+                if (fe[i] - fb[i] >= 2 && *fb[i] == '"' && fe[i][-1] == '"') {
+                    fb[i]++;
+                    fe[i]--;
+                }
                 for (int c = 0; c < NCOL; c++)
                     if ((size_t)(fe[i] - fb[i]) == strlen(COL_NAMES[c]) && !memcmp(fb[i], COL_NAMES[c], strlen(COL_NAMES[c])))
                         which = c;

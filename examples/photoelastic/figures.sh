@@ -17,6 +17,9 @@ pe --preset disk "${S[@]}" --polariscope plane --polarizer-deg 0 -o "$out/disk-p
 pe --preset disk "${S[@]}" --polariscope plane --polarizer-deg 30 --light mono --lambda-nm 589 \
   -o "$out/disk-plane-dark-589-psi30.png"
 
+# The same disk seen 40 degrees off its normal (general slab path; approximate, see the docs).
+pe --preset disk "${S[@]}" --tilt-deg 40 -o "$out/disk-circular-dark-white-tilt40.png"
+
 # Plate with a hole under tension (a 5 mm, 60 x 60 mm, h 3 mm, S 2.5 MPa).
 pe --preset hole --stress-MPa 2.5 "${S[@]}" -o "$out/hole-circular-dark-white.png"
 pe --preset hole --stress-MPa 2.5 "${S[@]}" --light mono --lambda-nm 546 --tint -o "$out/hole-circular-dark-546-tint.png"

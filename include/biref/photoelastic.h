@@ -73,6 +73,14 @@ void biref_pe_principal_of(const biref_pe_stress *s, biref_pe_principal *out);
 biref_slab biref_pe_slab_at(const biref_pe_material *m, double thickness_m, double eta_i,
                             const biref_pe_principal *p);
 
+/* For oblique viewing: the uniaxial slab closest to the biaxial plate. The true third index
+ * n3 = n0 + C2 (s1 + s2) differs from n2 by -C s2 and from n1 by -C s1 (docs, "Model"); the axis
+ * goes along the principal direction whose stress is larger in magnitude, so that the two
+ * indices the model makes equal are the two closest ones. At normal incidence this is the same
+ * optical element as biref_pe_slab_at (up to a common index shift). */
+biref_slab biref_pe_slab_best(const biref_pe_material *m, double thickness_m, double eta_i,
+                              const biref_pe_principal *p);
+
 /* ------------------------------------------------------------------------ */
 /* Stress fields (closed forms)                                              */
 /* ------------------------------------------------------------------------ */
@@ -185,6 +193,10 @@ typedef struct {
 
 /* Retardation (n1 - n2) h in nm and fringe order N = (n1 - n2) h / lambda = h C (s1 - s2) / lambda. */
 double biref_pe_retardation_nm(const biref_pe_setup *s, const biref_pe_principal *p);
+/* The model's retardation on the oblique path at theta (the plate turned about x, as in
+ * biref_pe_shade_oblique): |Re(opl_e - opl_o)| of one crossing of biref_pe_slab_best; equals
+ * biref_pe_retardation_nm at theta = 0. NAN if the slab cannot be prepared. */
+double biref_pe_retardation_oblique_nm(const biref_pe_setup *s, const biref_pe_principal *p, double theta_rad);
 
 /* Fast path (docs/PHOTOELASTICITY.md, "Fast path"): at normal incidence with the axis in the
  * plane the o and e modes do not mix, J_T = t_e a a^T + t_o b b^T (a, b the principal
@@ -204,6 +216,15 @@ void biref_pe_shade(const biref_pe_setup *s, const biref_spectral *sp, const bir
 biref_status biref_pe_shade_general(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p,
                                     int thickness_jitter, double thickness_span_nm, double xyz[3]);
 
+/* Oblique viewing (the plate turned about its x axis by theta, so that the plane of incidence
+ * contains the plate's y axis and normal; polarizer and analyzer stay perpendicular to the line
+ * of sight, their angles measured from s = x towards p). The general path on biref_pe_slab_best:
+ * white light by biref_spectrum_expansion_polarized; monochromatic by the path expansion to order
+ * 2, paths coherent within an order and orders added in intensity (docs, "Coherence"). An
+ * approximation beyond normal incidence: docs/PHOTOELASTICITY.md, "How it degrades". */
+biref_status biref_pe_shade_oblique(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p,
+                                    double theta_rad, double xyz[3]);
+
 /* The same point by numeric spectral integration (white light only). */
 biref_status biref_pe_shade_numeric(const biref_pe_setup *s, const biref_numeric_plan *plan,
                                     const biref_pe_principal *p, double xyz[3]);
@@ -217,11 +238,14 @@ typedef struct {
     int supersample;    /* k x k samples per pixel (box filter), 1..8 */
     int threads;        /* OpenMP threads, 0 = default */
     double tint[3];     /* mono only: XYZ the intensity multiplies (white E = (1,1,1)) */
+    double tilt;        /* 0: normal view (fast path); else biref_pe_shade_oblique at this angle (rad) */
 } biref_pe_image_opts;
 
-/* Renders field f seen through setup s at normal incidence: XYZ floats (3 per pixel, row-major,
- * top row = frame's ymax), white E = (1,1,1). sp is required for white light. Deterministic and
- * independent of the thread count. */
+/* Renders field f seen through setup s: XYZ floats (3 per pixel, row-major, top row = frame's
+ * ymax), white E = (1,1,1); the frame (plate coordinates) fills the image, so with a tilt the
+ * caller foreshortens the height by cos(tilt) to keep square pixels. sp is required for white
+ * light. Deterministic and independent of the thread count. BIREF_ERR_INVALID for a tilt outside
+ * [0, 89 deg]. */
 biref_status biref_pe_render(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_field *f,
                              const biref_pe_image_opts *opt, float *xyz);
 

@@ -93,3 +93,20 @@ biref_slab biref_pe_slab_at(const biref_pe_material *m, double thickness_m, doub
     sl.eta_i = eta_i;
     return sl;
 }
+
+biref_slab biref_pe_slab_best(const biref_pe_material *m, double thickness_m, double eta_i,
+                              const biref_pe_principal *p)
+{
+    if (fabs(p->s1) >= fabs(p->s2)) return biref_pe_slab_at(m, thickness_m, eta_i, p);
+    /* Axis along direction 2 (phi + 90 deg): eta_e = n2, eta_o = n1 = n3 in the model. Keeping
+     * eta_o = n0 shifts both indices by -C (s1 - s2): a common phase only. */
+    biref_slab sl;
+    sl.eta_o = m->n0;
+    sl.eta_e = m->n0 - m->C_per_Pa * (p->s1 - p->s2);
+    sl.axis[0] = -sin(p->phi);
+    sl.axis[1] = 0.0;
+    sl.axis[2] = cos(p->phi);
+    sl.thickness_nm = thickness_m * 1e9;
+    sl.eta_i = eta_i;
+    return sl;
+}

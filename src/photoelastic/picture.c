@@ -13,6 +13,8 @@ biref_status biref_pe_render(const biref_pe_setup *s, const biref_spectral *sp, 
         return BIREF_ERR_INVALID;
     if (s->light == BIREF_PE_WHITE && !sp) return BIREF_ERR_INVALID;
     if (!(f->frame[1] > f->frame[0] && f->frame[3] > f->frame[2])) return BIREF_ERR_INVALID;
+    if (!(opt->tilt >= 0.0 && opt->tilt <= 89.0 * M_PI / 180.0)) return BIREF_ERR_INVALID;
+    const int oblique = opt->tilt > 0.0;
     const int W = opt->width, H = opt->height, k = opt->supersample;
     const double x0 = f->frame[0], sx = (f->frame[1] - f->frame[0]) / W;
     const double y1 = f->frame[3], sy = (f->frame[3] - f->frame[2]) / H;
@@ -38,7 +40,10 @@ biref_status biref_pe_render(const biref_pe_setup *s, const biref_spectral *sp, 
                     if (biref_pe_field_stress(f, x, y, &st)) {
                         biref_pe_principal p;
                         biref_pe_principal_of(&st, &p);
-                        biref_pe_shade(s, sp, &p, c);
+                        if (!oblique)
+                            biref_pe_shade(s, sp, &p, c);
+                        else if (biref_pe_shade_oblique(s, sp, &p, opt->tilt, c) != BIREF_OK)
+                            c[0] = c[1] = c[2] = NAN; /* cannot happen for a checked tilt; shows as black */
                     } else {
                         c[0] = c[1] = c[2] = bg;
                     }

@@ -26,6 +26,12 @@ expect_ok "threads 1" photoelastic --preset hole --tension-deg 30 --size 40 --th
 expect_ok "threads 2" photoelastic --preset hole --tension-deg 30 --size 40 --threads 2 -o "$tmpdir/t2.png"
 cmp -s "$tmpdir/t1.png" "$tmpdir/t2.png" || { echo "FAIL (threads change the picture)"; fails=$((fails + 1)); }
 
+# Oblique view: the picture is foreshortened (square pixels), and the JSON records the tilt.
+expect_ok "tilted disk" photoelastic --preset disk --tilt-deg 60 --size 40 -o "$tmpdir/tilt.png" --json
+expect_grep "tilted height" '"height":[[:space:]]*20,'
+expect_grep "tilt in json" '"tilt_deg":[[:space:]]*60'
+expect_ok "tilted mono profile" photoelastic --preset hole --tilt-deg 30 --light mono --profile -20,10,20,10 --samples 5
+
 # Profile along the disk's vertical diameter, monochromatic, index-matched surround (no
 # reflections): N = 4 C P R / (pi lambda (R^2 - y^2)) and dark circular intensity sin^2(pi N).
 expect_ok "disk profile" photoelastic --preset disk --radius-mm 20 --load-N 400 --material epoxy --eta-i 1.57 \
@@ -102,6 +108,7 @@ expect_error "nothing to do" photoelastic --preset disk
 expect_error "bad profile" photoelastic --preset disk --profile 1,2,3
 expect_error "samples without profile" photoelastic --preset disk --samples 5 -o "$tmpdir/x.png"
 expect_error "size zero" photoelastic --preset disk --size 0 -o "$tmpdir/x.png"
+expect_error "tilt too large" photoelastic --preset disk --tilt-deg 85 -o "$tmpdir/x.png"
 expect_error "bad view" photoelastic --preset disk --view-mm 1,0,0,1 -o "$tmpdir/x.png"
 expect_error "unknown option" photoelastic --preset disk --frobnicate -o "$tmpdir/x.png"
 expect_error "stray argument" photoelastic --preset disk extra -o "$tmpdir/x.png"

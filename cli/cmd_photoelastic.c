@@ -18,8 +18,9 @@ static const char *const CMD = "photoelastic";
 static void help(void)
 {
     printf("usage: biref photoelastic (--preset disk|hole|beam | --stress-grid FILE) [OPTIONS]\n\n"
-           "A plate under plane stress seen at normal incidence in a polariscope: isochromatic fringes\n"
-           "(and isoclinics in a plane polariscope) from the stress-optic law n1 - n2 = C (s1 - s2).\n"
+           "A plate under plane stress seen in a polariscope (at normal incidence unless --tilt-deg):\n"
+           "isochromatic fringes (and isoclinics in a plane polariscope) from the stress-optic law\n"
+           "n1 - n2 = C (s1 - s2).\n"
            "Each point is a uniaxial slab with its optic axis along the first principal stress\n"
            "(docs/PHOTOELASTICITY.md).\n\n"
            "Specimen:\n"
@@ -53,7 +54,8 @@ static void help(void)
            "  --view-mm x0,x1,y0,y1  show this window of the plate instead of the whole part\n"
            "  --tilt-deg A         view the plate A degrees off its normal (turned about its x axis;\n"
            "                       0-80, default 0). Uses the general slab path (about 15x slower) and\n"
-           "                       the uniaxial approximation, which is exact only at 0 (docs)\n"
+           "                       the uniaxial approximation, exact only at 0 or where one principal\n"
+           "                       stress vanishes (docs/PHOTOELASTICITY.md)\n"
            "  --supersample K      K x K samples per pixel (default 2)\n"
            "  --exposure E         multiply intensities by E (default 1)\n"
            "  --threads T          OpenMP threads (default: all cores); the picture does not depend on T\n"

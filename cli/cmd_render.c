@@ -20,8 +20,11 @@ static void help(void)
            "Options:\n"
            "  -o, --output FILE    output PNG (required)\n"
            "  --method M           analytic (default; the paper's eq. 26), numeric, ground-truth\n"
-           "                       (numeric with %d samples)\n"
+           "                       (numeric with %d samples) or expansion (exact integral of the\n"
+           "                       path-group expansion; any polarizer, docs/PHYSICS.md §5)\n"
            "  --samples N          spectral samples for --method numeric (default 64)\n"
+           "  --order N            expansion: orders summed coherently, 0-8 (default adaptive)\n"
+           "  --tolerance E        expansion: adaptive error bound, relative (default 1e-3)\n"
            "  --width W            image width in pixels (overrides the scene)\n"
            "  --height H           image height in pixels (overrides the scene)\n"
            "  --threads T          OpenMP threads (default: all cores); the image does not depend on T\n"
@@ -34,13 +37,15 @@ static void help(void)
            BIREF_GROUND_TRUTH_SAMPLES);
 }
 
-enum { OPT_METHOD = 2000, OPT_SAMPLES, OPT_WIDTH, OPT_HEIGHT, OPT_THREADS, OPT_PFM, OPT_JSON };
+enum { OPT_METHOD = 2000, OPT_SAMPLES, OPT_WIDTH, OPT_HEIGHT, OPT_THREADS, OPT_PFM, OPT_JSON, OPT_ORDER, OPT_TOLERANCE };
 
 int cmd_render(int argc, char **argv)
 {
     static const struct option longopts[] = {{"output", required_argument, 0, 'o'},
                                              {"method", required_argument, 0, OPT_METHOD},
                                              {"samples", required_argument, 0, OPT_SAMPLES},
+                                             {"order", required_argument, 0, OPT_ORDER},
+                                             {"tolerance", required_argument, 0, OPT_TOLERANCE},
                                              {"width", required_argument, 0, OPT_WIDTH},
                                              {"height", required_argument, 0, OPT_HEIGHT},
                                              {"threads", required_argument, 0, OPT_THREADS},
@@ -51,7 +56,7 @@ int cmd_render(int argc, char **argv)
                                              {0, 0, 0, 0}};
     const char *out = NULL, *pfm = NULL;
     long width = 0, height = 0, threads = 0, samples = 0;
-    int json = 0, quiet = 0, have_samples = 0;
+    int json = 0, quiet = 0, have_samples = 0, have_expansion_opt = 0;
     biref_render_options opt;
     biref_render_options_default(&opt);
     opterr = 0;
@@ -64,7 +69,8 @@ int cmd_render(int argc, char **argv)
         case 'q': quiet = 1; break;
         case OPT_METHOD:
             if (biref_method_from_name(optarg, &opt.method) != BIREF_OK)
-                return cli_error(CMD, "--method: expected analytic, numeric or ground-truth, got '%s'", optarg),
+                return cli_error(CMD, "--method: expected analytic, numeric, ground-truth or expansion, got '%s'",
+                                 optarg),
                        CLI_EXIT_USAGE;
             break;
         case OPT_SAMPLES:
@@ -80,6 +86,20 @@ int cmd_render(int argc, char **argv)
         case OPT_THREADS:
             if (cli_parse_int(CMD, "--threads", optarg, 1, 1024, &threads)) return CLI_EXIT_USAGE;
             break;
+        case OPT_ORDER: {
+            long v;
+            if (cli_parse_int(CMD, "--order", optarg, 0, 8, &v)) return CLI_EXIT_USAGE;
+            opt.expansion.order = (int)v;
+            have_expansion_opt = 1;
+            break;
+        }
+        case OPT_TOLERANCE:
+            if (cli_parse_double(CMD, "--tolerance", optarg, &opt.expansion.tolerance)) return CLI_EXIT_USAGE;
+            if (!(opt.expansion.tolerance > 0.0 && opt.expansion.tolerance < 1.0))
+                return cli_error(CMD, "--tolerance: must be in (0, 1), got %g", opt.expansion.tolerance),
+                       CLI_EXIT_USAGE;
+            have_expansion_opt = 1;
+            break;
         case OPT_PFM: pfm = optarg; break;
         case OPT_JSON: json = 1; break;
         default: cli_getopt_error(CMD, c, argv); return CLI_EXIT_USAGE;
@@ -92,6 +112,8 @@ int cmd_render(int argc, char **argv)
     if (have_samples && opt.method != BIREF_METHOD_NUMERIC)
         return cli_error(CMD, "--samples only applies to --method numeric"), CLI_EXIT_USAGE;
     if (have_samples) opt.samples = (int)samples;
+    if (have_expansion_opt && opt.method != BIREF_METHOD_EXPANSION)
+        return cli_error(CMD, "--order/--tolerance only apply to --method expansion"), CLI_EXIT_USAGE;
     opt.threads = (int)threads;
 
     biref_scene scene;

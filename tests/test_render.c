@@ -186,7 +186,7 @@ static void test_crossed(void)
     biref_renderer *r = NULL;
     char msg[256] = "";
     CHECK(biref_renderer_create(&wf, &opt, &r, msg, sizeof msg) == BIREF_ERR_INVALID);
-    CHECK(strstr(msg, "world-fixed polarizers need --method numeric or ground-truth") != NULL);
+    CHECK(strstr(msg, "world-fixed polarizers need --method expansion, numeric or ground-truth") != NULL);
     x = render(&wf, BIREF_METHOD_NUMERIC, 32, 2, NULL);
     if (x) {
         /* The two axes are orthogonal but not both transverse to every ray, so the corner leaks

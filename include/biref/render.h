@@ -113,6 +113,7 @@ typedef struct {
     biref_method method;
     int samples; /* BIREF_METHOD_NUMERIC: spectral samples (default 64); ignored otherwise */
     int threads; /* OpenMP threads; 0 = the OpenMP default */
+    biref_expansion_opts expansion; /* BIREF_METHOD_EXPANSION: order / tolerance */
 } biref_render_options;
 
 void biref_render_options_default(biref_render_options *opt);
@@ -121,7 +122,7 @@ typedef struct biref_renderer biref_renderer;
 
 /* Precomputes everything per scene (spectral tables, numeric plan, per-slab frames).
  * BIREF_ERR_INVALID with a one-line msg if the scene is invalid or the method cannot
- * handle its polarizers (world-fixed polarizers need a numeric method). */
+ * handle its polarizers (world-fixed polarizers need a numeric method or the expansion). */
 biref_status biref_renderer_create(const biref_scene *scene, const biref_render_options *opt,
                                    biref_renderer **out, char *msg, size_t msg_len);
 void biref_renderer_destroy(biref_renderer *r);

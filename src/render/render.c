@@ -13,6 +13,7 @@ void biref_render_options_default(biref_render_options *opt)
     opt->method = BIREF_METHOD_ANALYTIC;
     opt->samples = 64;
     opt->threads = 0;
+    biref_expansion_opts_default(&opt->expansion);
 }
 
 static biref_status set_msg(char *msg, size_t msg_len, biref_status s, const char *text)
@@ -30,7 +31,7 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
     biref_status s = biref_scene_validate(scene, msg, msg_len);
     if (s) return s;
     if (opt->method != BIREF_METHOD_ANALYTIC && opt->method != BIREF_METHOD_NUMERIC &&
-        opt->method != BIREF_METHOD_GROUND_TRUTH)
+        opt->method != BIREF_METHOD_GROUND_TRUTH && opt->method != BIREF_METHOD_EXPANSION)
         return set_msg(msg, msg_len, BIREF_ERR_INVALID, "unknown spectral method");
     if (opt->method == BIREF_METHOD_NUMERIC && (opt->samples < 1 || opt->samples > BIREF_GROUND_TRUTH_SAMPLES * 4))
         return set_msg(msg, msg_len, BIREF_ERR_INVALID, "samples must be between 1 and 65536");
@@ -39,8 +40,11 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
     int world_fixed = scene->polarization.type == BIREF_POL_LINEAR || scene->filter.type == BIREF_FILTER_LINEAR;
     if (world_fixed && opt->method == BIREF_METHOD_ANALYTIC)
         return set_msg(msg, msg_len, BIREF_ERR_INVALID,
-                       "world-fixed polarizers need --method numeric or ground-truth (the paper's method handles "
-                       "s/p only)");
+                       "world-fixed polarizers need --method expansion, numeric or ground-truth (the paper's method "
+                       "handles s/p only)");
+    if (opt->method == BIREF_METHOD_EXPANSION && opt->expansion.order < 0 &&
+        !(opt->expansion.tolerance > 0.0 && opt->expansion.tolerance < 1.0))
+        return set_msg(msg, msg_len, BIREF_ERR_INVALID, "expansion tolerance must be in (0, 1)");
 
     biref_renderer *r = calloc(1, sizeof *r);
     if (!r) return set_msg(msg, msg_len, BIREF_ERR_NOMEM, "out of memory");
@@ -91,7 +95,7 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
     biref_spectral_config cfg;
     biref_spectral_config_default(&cfg);
     s = biref_spectral_create(&cfg, &r->sp);
-    if (!s && opt->method != BIREF_METHOD_ANALYTIC)
+    if (!s && opt->method != BIREF_METHOD_ANALYTIC && opt->method != BIREF_METHOD_EXPANSION)
         s = biref_numeric_plan_create(r->sp, opt->method == BIREF_METHOD_GROUND_TRUTH ? BIREF_GROUND_TRUTH_SAMPLES
                                                                                        : opt->samples,
                                       &r->plan);

@@ -152,9 +152,10 @@ static int eval_slab(const biref_renderer *r, const render_slab *sl, double thet
                 for (int j = 0; j < 3; j++) X[i][o][j] = E[i][o][j] + 2.0 * H[i][o][j];
         biref_spectrum_mix(X, r->w_in, r->mask, xyz);
     } else {
-        /* Numeric methods go through the polarized integrator even for the paper's s/p model:
-         * it evaluates only the Jones matrix needed (T or R), and a diagonal C and P give
-         * exactly biref_spectrum_mix's sum. s = x for both waves (s is the frame's x), p = k x s. */
+        /* Numeric methods and the expansion go through the polarized integrators even for the
+         * paper's s/p model: they evaluate only the direction needed (T or R), and a diagonal C
+         * and P give exactly biref_spectrum_mix's sum. s = x for both waves (s is the frame's
+         * x), p = k x s. */
         double Cr[2][2], Pr[2][2];
         if (r->world_fixed) {
             double p_in[3], p_out[3];
@@ -176,7 +177,14 @@ static int eval_slab(const biref_renderer *r, const render_slab *sl, double thet
                 C[i][j] = Cr[i][j];
                 P[i][j] = Pr[i][j];
             }
-        biref_spectrum_numeric_polarized(r->plan, &st, which, C, r->filter.type == BIREF_FILTER_NONE ? NULL : P, xyz);
+        const double complex(*Pp)[2] = r->filter.type == BIREF_FILTER_NONE ? NULL : (const double complex(*)[2])P;
+        if (r->opt.method == BIREF_METHOD_EXPANSION) {
+            if (biref_spectrum_expansion_polarized(r->sp, &st, which, (const double complex(*)[2])C, Pp,
+                                                   &r->opt.expansion, xyz, NULL) != BIREF_OK)
+                return 1;
+        } else {
+            biref_spectrum_numeric_polarized(r->plan, &st, which, (const double complex(*)[2])C, Pp, xyz);
+        }
     }
     return !(isfinite(xyz[0]) && isfinite(xyz[1]) && isfinite(xyz[2]));
 }

@@ -56,10 +56,17 @@ expect_error "bad threads" render "$good" -o "$tmpdir/t.png" --threads x
 expect_error "unknown option" render "$good" -o "$tmpdir/t.png" --frobnicate
 sed -e 's/"type": "sp", "s": 0.1, "p": 0.9/"type": "linear", "direction": [0, 1, 0]/' "$good" >"$tmpdir/wf.json"
 expect_error "world-fixed polarizer with analytic" render "$tmpdir/wf.json" -o "$tmpdir/wf.png" "${small[@]}"
-grep -q "world-fixed polarizers need --method numeric or ground-truth" "$tmpdir/err" ||
+grep -q "world-fixed polarizers need --method expansion, numeric or ground-truth" "$tmpdir/err" ||
   { echo "FAIL (world-fixed message)"; fails=$((fails + 1)); }
 expect_ok "world-fixed polarizer with numeric" render "$tmpdir/wf.json" -o "$tmpdir/wf.png" "${small[@]}" \
   --method numeric --samples 8
+expect_ok "world-fixed polarizer with expansion" render "$tmpdir/wf.json" -o "$tmpdir/wf.png" "${small[@]}" \
+  --method expansion
+expect_ok "fig. 9c with a world-fixed analyzer at 45 degrees" render examples/fig9c_analyzer45.json \
+  -o "$tmpdir/f45.png" "${small[@]}" --method expansion --order 2
+expect_error "order without expansion" render "$good" -o "$tmpdir/t.png" "${small[@]}" --order 2
+expect_error "order out of range" render "$good" -o "$tmpdir/t.png" "${small[@]}" --method expansion --order 9
+expect_error "tolerance out of range" render "$good" -o "$tmpdir/t.png" "${small[@]}" --method expansion --tolerance 2
 
 # Unwritable outputs: exit 1, one line, and nothing left behind.
 rc=0; "$BIREF" render "$good" -o "$tmpdir/no/such/dir/x.png" "${small[@]}" >"$tmpdir/out" 2>"$tmpdir/err" || rc=$?

@@ -165,6 +165,32 @@ int main(void)
         }
         CHECK(worse > cases / 2);
     }
+    /* 5b. Flipping a prepared state (light from the other face) equals preparing the slab with
+     * the axis rotated by 180 degrees about z, complex amplitudes included. */
+    {
+        test_rng rng = {0xf11bULL};
+        double worst = 0;
+        for (int t = 0; t < 300; t++) {
+            biref_slab s;
+            double theta, lambda;
+            random_slab(&rng, &s, &theta, &lambda);
+            biref_slab_state a, b, f;
+            CHECK(biref_slab_prepare(&s, theta, &a) == BIREF_OK);
+            biref_slab rot = s;
+            rot.axis[0] = -s.axis[0];
+            rot.axis[1] = -s.axis[1];
+            CHECK(biref_slab_prepare(&rot, theta, &b) == BIREF_OK);
+            biref_slab_state_flip(&a, &f);
+            biref_jones Tb, Rb, Tf, Rf;
+            biref_slab_jones_at(&b, lambda, &Tb, &Rb);
+            biref_slab_jones_at(&f, lambda, &Tf, &Rf);
+            for (int i = 0; i < 2; i++)
+                for (int o = 0; o < 2; o++)
+                    worst = fmax(worst, fmax(cabs(Tb.m[i][o] - Tf.m[i][o]), cabs(Rb.m[i][o] - Rf.m[i][o])));
+            for (int m = 0; m < 4; m++) CHECK(cabs(f.modes.q[m] - b.modes.q[m]) < 1e-12);
+        }
+        CHECK(worst < 1e-12);
+    }
     /* Path counts: 2^(2n+1) transmitted and 2^(2n) reflected paths of order n. */
     CHECK(biref_path_count(BIREF_TRANSMISSION, 0) == 2);
     CHECK(biref_path_count(BIREF_TRANSMISSION, 2) == 2 + 8 + 32);

@@ -112,6 +112,14 @@ typedef struct {
 
 biref_status biref_slab_prepare(const biref_slab *slab, double theta_rad, biref_slab_state *st);
 
+/* The same slab lit from the other face: the state in the frame rotated by 180 degrees about z
+ * (x -> -x, y -> -y; axis (a, b, c) -> (-a, -b, c)), obtained by relabelling the interface
+ * solves already done (each 4x4 solve gives both directions), not by solving again. Exact:
+ * equals biref_slab_prepare with the rotated axis, amplitudes included (docs/PHYSICS.md §3).
+ * A renderer that needs transmission (light from behind) and reflection (light from the
+ * front) at one hit point prepares once and flips. out may not alias in. */
+void biref_slab_state_flip(const biref_slab_state *in, biref_slab_state *out);
+
 /* All orders summed in closed form (paper eq. 17, and its reflection analogue).
  * Transmission is referred to the plane y = -d, reflection to y = 0.
  * Either output may be NULL. */

@@ -38,6 +38,45 @@ biref_status biref_slab_prepare(const biref_slab *slab, double theta, biref_slab
     return BIREF_OK;
 }
 
+void biref_slab_state_flip(const biref_slab_state *in, biref_slab_state *out)
+{
+    *out = *in;
+    out->slab.axis[0] = -in->slab.axis[0];
+    out->slab.axis[1] = -in->slab.axis[1];
+    /* The far face becomes the near one: its "from below" coefficients (incident from the
+     * ambient below / from inside going down) are the new top interface's, and vice versa.
+     * The isotropic bases s = x, p = k x s both change sign under the rotation, so amplitude
+     * ratios are unchanged; the o/e mode bases inside cancel along every path. */
+    memcpy(out->top.r_down, in->bottom.r_up, sizeof out->top.r_down);
+    memcpy(out->top.t_down, in->bottom.t_up, sizeof out->top.t_down);
+    memcpy(out->top.r_up, in->bottom.r_down, sizeof out->top.r_up);
+    memcpy(out->top.t_up, in->bottom.t_down, sizeof out->top.t_up);
+    memcpy(out->bottom.r_down, in->top.r_up, sizeof out->bottom.r_down);
+    memcpy(out->bottom.t_down, in->top.t_up, sizeof out->bottom.t_down);
+    memcpy(out->bottom.r_up, in->top.r_down, sizeof out->bottom.r_up);
+    memcpy(out->bottom.t_up, in->top.t_down, sizeof out->bottom.t_up);
+    for (int x = 0; x < 2; x++) {
+        out->opl_down[x] = in->opl_up[x];
+        out->opl_up[x] = in->opl_down[x];
+    }
+    /* Modes: the new down-going wave is the old up-going one seen with y -> -y. */
+    static const int swap[4] = {BIREF_MODE_O_UP, BIREF_MODE_E_UP, BIREF_MODE_O_DOWN, BIREF_MODE_E_DOWN};
+    for (int m = 0; m < 4; m++) {
+        int from = swap[m];
+        out->modes.q[m] = -in->modes.q[from];
+        out->modes.eta_eff[m] = in->modes.eta_eff[from];
+        out->modes.E[m][0] = -in->modes.E[from][0];
+        out->modes.E[m][1] = -in->modes.E[from][1];
+        out->modes.E[m][2] = in->modes.E[from][2];
+        out->modes.H[m][0] = -in->modes.H[from][0];
+        out->modes.H[m][1] = -in->modes.H[from][1];
+        out->modes.H[m][2] = in->modes.H[from][2];
+        out->modes.poynting[m][0] = -in->modes.poynting[from][0];
+        out->modes.poynting[m][1] = -in->modes.poynting[from][1];
+        out->modes.poynting[m][2] = in->modes.poynting[from][2];
+    }
+}
+
 void biref_slab_jones_at(const biref_slab_state *st, double lambda_nm, biref_jones *T, biref_jones *R)
 {
     double k = 2.0 * M_PI / lambda_nm;

@@ -128,25 +128,19 @@ static double passthrough(const double C[2][2], const double P[2][2])
     return f;
 }
 
-/* One spectral evaluation of a slab in a ray's paper frame (x, y, z given in world
- * coordinates), for light arriving along k_in and leaving along k_out. which selects
- * transmission or reflection. Returns 0 on success; non-zero leaves xyz undefined. */
-static int eval_slab(const biref_renderer *r, const render_slab *sl, double theta, const double x[3],
-                     const double y[3], const double z[3], const double k_in[3], const double k_out[3], int which,
-                     double xyz[3])
+/* One spectral evaluation of a prepared slab state in a ray's paper frame (x: the frame's x
+ * axis in world coordinates, the s direction of every wave), for light arriving along k_in and
+ * leaving along k_out. which selects transmission or reflection. Returns 0 on success;
+ * non-zero leaves xyz undefined. */
+static int eval_slab(const biref_renderer *r, const biref_slab_state *st, const double x[3], const double k_in[3],
+                     const double k_out[3], int which, double xyz[3])
 {
-    biref_slab slab = sl->base;
-    slab.axis[0] = v3_dot(sl->axis_world, x);
-    slab.axis[1] = v3_dot(sl->axis_world, y);
-    slab.axis[2] = v3_dot(sl->axis_world, z);
-    biref_slab_state st;
-    if (biref_slab_prepare(&slab, theta, &st) != BIREF_OK) return 1;
     if (r->opt.method == BIREF_METHOD_ANALYTIC) {
         /* Only one of T and R is needed per evaluation, so call the per-direction terms
          * (eq. 25: S = E + 2H) rather than biref_spectrum_analytic, which computes both and
          * would double the cost of the dominant part of the pixel. */
         double E[2][2][3], H[2][2][3], X[2][2][3];
-        biref_analytic_terms(r->sp, &st, which, E, H);
+        biref_analytic_terms(r->sp, st, which, E, H);
         for (int i = 0; i < 2; i++)
             for (int o = 0; o < 2; o++)
                 for (int j = 0; j < 3; j++) X[i][o][j] = E[i][o][j] + 2.0 * H[i][o][j];
@@ -179,11 +173,11 @@ static int eval_slab(const biref_renderer *r, const render_slab *sl, double thet
             }
         const double complex(*Pp)[2] = r->filter.type == BIREF_FILTER_NONE ? NULL : (const double complex(*)[2])P;
         if (r->opt.method == BIREF_METHOD_EXPANSION) {
-            if (biref_spectrum_expansion_polarized(r->sp, &st, which, (const double complex(*)[2])C, Pp,
+            if (biref_spectrum_expansion_polarized(r->sp, st, which, (const double complex(*)[2])C, Pp,
                                                    &r->opt.expansion, xyz, NULL) != BIREF_OK)
                 return 1;
         } else {
-            biref_spectrum_numeric_polarized(r->plan, &st, which, (const double complex(*)[2])C, Pp, xyz);
+            biref_spectrum_numeric_polarized(r->plan, st, which, (const double complex(*)[2])C, Pp, xyz);
         }
     }
     return !(isfinite(xyz[0]) && isfinite(xyz[1]) && isfinite(xyz[2]));
@@ -247,9 +241,8 @@ int render_shade_pixel(const biref_renderer *r, const double dir[3], double xyz[
     /* Paper frame of this ray. Transmission: y = normal pointing away from the camera
      * (towards the light behind), z = tangential part of the view ray, x = y x z. The
      * reflection frame has y towards the camera and the same z, hence x_R = -x_T. */
-    double yT[3], yR[3], z[3], xT[3], xR[3];
+    double yT[3], z[3], xT[3], xR[3];
     v3_scale(hit->normal, dn < 0 ? -1.0 : 1.0, yT);
-    v3_scale(yT, -1.0, yR);
     v3_axpy(dir, -dn, hit->normal, z);
     if (v3_normalize(z, z) < 1e-9) memcpy(z, hit->tangent, sizeof z);
     v3_cross(yT, z, xT);
@@ -260,9 +253,20 @@ int render_shade_pixel(const biref_renderer *r, const double dir[3], double xyz[
     double k_refl_in[3];
     v3_scale(mirror, -1.0, k_refl_in);
 
+    /* One optics set-up per hit: the reflection frame is the transmission frame rotated by 180
+     * degrees about z, i.e. the same slab lit from the other face (biref_slab_state_flip). */
     double tT[3], tR[3];
-    int failT = eval_slab(r, hit, theta, xT, yT, z, k_view, k_view, BIREF_TRANSMISSION, tT);
-    int failR = eval_slab(r, hit, theta, xR, yR, z, k_refl_in, k_view, BIREF_REFLECTION, tR);
+    biref_slab slab = hit->base;
+    slab.axis[0] = v3_dot(hit->axis_world, xT);
+    slab.axis[1] = v3_dot(hit->axis_world, yT);
+    slab.axis[2] = v3_dot(hit->axis_world, z);
+    biref_slab_state stT, stR;
+    int failT = 1, failR = 1;
+    if (biref_slab_prepare(&slab, theta, &stT) == BIREF_OK) {
+        biref_slab_state_flip(&stT, &stR);
+        failT = eval_slab(r, &stT, xT, k_view, k_view, BIREF_TRANSMISSION, tT);
+        failR = eval_slab(r, &stR, xR, k_refl_in, k_view, BIREF_REFLECTION, tR);
+    }
     if (failT || failR) {
         /* A failed evaluation (grazing-angle breakdown) must not put a NaN in the image:
          * treat the slab as a perfect mirror seen through the filter. */

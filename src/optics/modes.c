@@ -83,7 +83,17 @@ void biref_isotropic_modes(double eta, double K, biref_modes *m)
     m->q[BIREF_MODE_O_UP] = m->q[BIREF_MODE_E_UP] = qu;
     sp_fields(qd, K, eta, m->E[BIREF_MODE_O_DOWN], m->E[BIREF_MODE_E_DOWN]);
     sp_fields(qu, K, eta, m->E[BIREF_MODE_O_UP], m->E[BIREF_MODE_E_UP]);
-    for (int i = 0; i < 4; i++) finish_mode(m, i, K);
+    for (int i = 0; i < 4; i++) {
+        /* In an isotropic medium energy flows along Re k (per-sample path: no general cross
+         * products); an evanescent wave carries it along the surface, towards -z. */
+        double complex q = m->q[i];
+        curl_field(q, K, m->E[i], m->H[i]);
+        int ev = cimag(q) != 0.0;
+        m->poynting[i][0] = 0.0;
+        m->poynting[i][1] = ev ? 0.0 : creal(q) / eta;
+        m->poynting[i][2] = ev ? -1.0 : -K / eta;
+        m->eta_eff[i] = ev ? NAN : eta;
+    }
     m->K_max_o = m->K_max_e = eta;
     m->evanescent_o = m->evanescent_e = K >= eta;
 }

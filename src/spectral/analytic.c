@@ -134,8 +134,21 @@ static void reflection(const biref_spectral *sp, const biref_slab_state *st, dou
         opl1[a] = od[a >> 1] + ou[a & 1];
         phase_eval(sp, opl1[a], &p1[a]);
     }
+    /* Pairs (0,1) and (2,3) differ by the same up-leg difference, (0,2) and (1,3) by the same
+     * down-leg difference: their table values coincide, only the decay of evanescent legs can
+     * differ. Six pairs, four look-ups. */
     for (int a = 0; a < 4; a++)
-        for (int b = a + 1; b < 4; b++) phase_eval(sp, opl1[b] - conj(opl1[a]), &pair[a][b]);
+        for (int b = a + 1; b < 4; b++) {
+            double complex d = opl1[b] - conj(opl1[a]);
+            if ((a == 2 && b == 3) || (a == 1 && b == 3)) {
+                const phase_int *twin = a == 2 ? &pair[0][1] : &pair[0][2];
+                pair[a][b] = *twin;
+                for (int j = 0; j < 3; j++)
+                    pair[a][b].att[j] = cimag(d) != 0.0 ? exp(-sp->k_centroid[j] * cimag(d)) : 1.0;
+            } else {
+                phase_eval(sp, d, &pair[a][b]);
+            }
+        }
 
     double ed[2][3], eu[2][3], u0[2][2][3], U[2][2][3];
     for (int m = 0; m < 2; m++) leg_energy(sp, od[m], ed[m]), leg_energy(sp, ou[m], eu[m]);

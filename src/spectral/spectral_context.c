@@ -17,6 +17,8 @@
 #define BUILD_DLAMBDA_NM 0.05
 /* Quadrature step for the direct (reference) evaluation. */
 #define DIRECT_DLAMBDA_NM 0.002
+/* |S(e^{ikD})| <= (edge_lo + edge_hi) / (2 pi D) beyond the table; below this bound it is dropped. */
+#define FAR_FIELD_BOUND 1e-5
 
 void biref_spectral_config_default(biref_spectral_config *cfg)
 {
@@ -141,6 +143,9 @@ biref_status biref_spectral_create(const biref_spectral_config *cfg_in, biref_sp
         sp->edge_lo[j] = lo[j] * cfg.lambda_min_nm * cfg.lambda_min_nm;
         sp->edge_hi[j] = hi[j] * cfg.lambda_max_nm * cfg.lambda_max_nm;
     }
+    double edge = 0.0;
+    for (int j = 0; j < 3; j++) edge = fmax(edge, sp->edge_lo[j] + sp->edge_hi[j]);
+    sp->d_far = fmax(sp->d_max, edge / (2.0 * M_PI * FAR_FIELD_BOUND));
     /* Wavenumber centroids by the same fine midpoint rule. */
     const int n = (int)ceil((cfg.lambda_max_nm - cfg.lambda_min_nm) / BUILD_DLAMBDA_NM);
     const double dl = (cfg.lambda_max_nm - cfg.lambda_min_nm) / n;
@@ -167,6 +172,10 @@ void biref_spectral_phase_integrals(const biref_spectral *sp, double opd, double
     if (opd < 0.0) {
         opd = -opd;
         sign = -1.0; /* cos is even in D, sin odd */
+    }
+    if (opd > sp->d_far) {
+        for (int j = 0; j < 3; j++) c[j] = s[j] = 0.0;
+        return;
     }
     if (!(opd <= sp->d_max)) {
         /* Endpoint asymptotics (integration by parts once; next term is O(1/D^2)). */

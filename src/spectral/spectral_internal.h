@@ -20,6 +20,9 @@ struct biref_spectral {
     /* Endpoint terms of the asymptotic expansion used beyond d_max (integration by parts):
      * S(e^{ikD}) ~ i/(2 pi D) [Λ λ^2 e^{2 pi i D/λ}]_{λmin}^{λmax}. */
     double edge_lo[3], edge_hi[3];
+    /* Beyond d_far the endpoint terms are below FAR_FIELD_BOUND in every band and the integrals
+     * are returned as 0 (no libm-free sine evaluations on the per-sample path). */
+    double d_far;
     /* Band centroids of the wavenumber, S(2 pi / lambda, Λ_j): evanescent legs are attenuated
      * with e^{-k_j Im(opl)} per band (dispersion of the decay ignored within a band). */
     double k_centroid[3];

@@ -24,7 +24,61 @@
 typedef struct {
     double complex M[2][2]; /* [in][out] */
     double complex opl;     /* nm */
+    int m, de, ue;          /* round trips, extraordinary legs down, up: see phase_key */
 } path_group;
+
+/* Every optical path is a + m A + n_de B + n_ue C with A a round trip of ordinary legs and
+ * B, C the extra path of an extraordinary leg down / up, so the real part of a pairwise
+ * difference depends only on the difference of the integer coordinates: the look-up table is
+ * queried once per distinct difference (a small hash on the stack), not once per pair. */
+static inline int phase_key(int m, int de, int ue) { return (m + 32) * 4096 + (de + 32) * 64 + (ue + 32); }
+
+enum { CACHE_SLOTS = 256, CACHE_MAX_FILL = 192 };
+
+typedef struct {
+    int key[CACHE_SLOTS];
+    int fill;
+    double c[CACHE_SLOTS][3], s[CACHE_SLOTS][3];
+    double spill_c[3], spill_s[3]; /* uncached result once the table is 3/4 full (high orders) */
+    const biref_spectral *sp;
+    double A, B, C; /* real parts, nm */
+} phase_cache;
+
+static void cache_init(phase_cache *pc, const biref_spectral *sp, const biref_slab_state *st)
+{
+    pc->sp = sp;
+    pc->A = creal(st->opl_down[0] + st->opl_up[0]);
+    pc->B = creal(st->opl_down[1] - st->opl_down[0]);
+    pc->C = creal(st->opl_up[1] - st->opl_up[0]);
+    for (int i = 0; i < CACHE_SLOTS; i++) pc->key[i] = -1;
+    pc->fill = 0;
+}
+
+/* S(cos), S(sin) at the real path difference with integer coordinates (dm, dde, due). */
+static void cache_get(phase_cache *pc, int dm, int dde, int due, const double **c, const double **s)
+{
+    int key = phase_key(dm, dde, due);
+    unsigned h = ((unsigned)key * 2654435761u) >> 24; /* 8 bits */
+    for (;;) {
+        if (pc->key[h] == key) break;
+        if (pc->key[h] < 0) {
+            double d = dm * pc->A + dde * pc->B + due * pc->C;
+            if (pc->fill >= CACHE_MAX_FILL) { /* keep probes short: compute without caching */
+                biref_spectral_phase_integrals(pc->sp, d, pc->spill_c, pc->spill_s);
+                *c = pc->spill_c;
+                *s = pc->spill_s;
+                return;
+            }
+            pc->key[h] = key;
+            pc->fill++;
+            biref_spectral_phase_integrals(pc->sp, d, pc->c[h], pc->s[h]);
+            break;
+        }
+        h = (h + 1) & (CACHE_SLOTS - 1u);
+    }
+    *c = pc->c[h];
+    *s = pc->s[h];
+}
 
 void biref_expansion_opts_default(biref_expansion_opts *o)
 {
@@ -84,6 +138,7 @@ static int build_groups(const biref_slab_state *st, int which, int order, path_g
         m0 = 0;
     } else {
         memcpy(g[n].M, st->top.r_down, sizeof g[n].M);
+        g[n].m = g[n].de = g[n].ue = 0;
         g[n++].opl = 0.0;
         for (int x = 0; x < 2; x++)
             for (int y = 0; y < 2; y++)
@@ -99,6 +154,10 @@ static int build_groups(const biref_slab_state *st, int which, int order, path_g
                 for (int i = 0; i < 2; i++)
                     for (int o = 0; o < 2; o++) p->M[i][o] = cur[de][ue][0][i] * exit[0][o] + cur[de][ue][1][i] * exit[1][o];
                 p->opl = (n_down - de) * od[0] + de * od[1] + (n_up - ue) * ou[0] + ue * ou[1];
+                /* Transmission's extra down leg is common to all groups and cancels in differences. */
+                p->m = m;
+                p->de = de;
+                p->ue = ue;
             }
         if (m == order) break;
         /* One more round trip: transmission reflects at the bottom (x -> y), goes up, reflects at
@@ -211,10 +270,11 @@ static void tail_energy(const tail_model *tm, int k, int skip, double out[3])
 
 /* max over bands of |S(e^{ikD}, Λ_j)|: how much of a coherent superposition at path difference D
  * survives the band integration. */
-static double band_coherence(const biref_spectral *sp, double d)
+static double band_coherence(phase_cache *pc, int dm, int dde, int due)
 {
-    double c[3], s[3], m = 0.0;
-    biref_spectral_phase_integrals(sp, d, c, s);
+    const double *c, *s;
+    cache_get(pc, dm, dde, due, &c, &s);
+    double m = 0.0;
     for (int j = 0; j < 3; j++) m = fmax(m, sqrt(c[j] * c[j] + s[j] * s[j]));
     return m;
 }
@@ -225,20 +285,21 @@ static double band_coherence(const biref_spectral *sp, double d)
  * within an order, and (b) between dropped and kept paths, at most 2 sqrt(E_tail E_total) times
  * the coherence at the shortest round trip. For mm-thick slabs both coherences are ~1e-5 away
  * from the optic axis, so order 1 suffices; thin or near-axis slabs get more orders. */
-static int choose_order(const biref_spectral *sp, const biref_slab_state *st, const tail_model *tm, int which,
-                        int nf, const biref_expansion_opts *o)
+static int choose_order(phase_cache *pc, const biref_slab_state *st, const tail_model *tm, int which, int nf,
+                        const biref_expansion_opts *o)
 {
     int lowest = which == BIREF_TRANSMISSION ? 0 : 1;
     if (o->order >= 0) return o->order < lowest ? lowest : (o->order > EXP_MAX_ORDER ? EXP_MAX_ORDER : o->order);
     int cap = o->max_order < 1 ? 1 : (o->max_order > EXP_MAX_ORDER ? EXP_MAX_ORDER : o->max_order);
     const double complex *od = st->opl_down, *ou = st->opl_up;
     double d_rt = INFINITY;
+    int rx = 0, ry = 0;
     for (int x = 0; x < 2; x++)
-        for (int y = 0; y < 2; y++) d_rt = fmin(d_rt, creal(od[x] + ou[y]));
-    double coh_cross = band_coherence(sp, d_rt);
-    double b = creal(od[1] - od[0]), c = creal(ou[1] - ou[0]);
-    double coh_intra = fmax(fmax(band_coherence(sp, b), band_coherence(sp, c)),
-                            fmax(band_coherence(sp, b + c), band_coherence(sp, b - c)));
+        for (int y = 0; y < 2; y++)
+            if (creal(od[x] + ou[y]) < d_rt) d_rt = creal(od[x] + ou[y]), rx = x, ry = y;
+    double coh_cross = band_coherence(pc, 1, rx, ry);
+    double coh_intra = fmax(fmax(band_coherence(pc, 0, 1, 0), band_coherence(pc, 0, 0, 1)),
+                            fmax(band_coherence(pc, 0, 1, 1), band_coherence(pc, 0, 1, -1)));
     for (int n = 1; n < cap; n++) {
         int ok = 1;
         for (int k = 0; k < nf && ok; k++) {
@@ -256,16 +317,19 @@ static int choose_order(const biref_spectral *sp, const biref_slab_state *st, co
 }
 
 /* The phase integral of one group pair: S(cos), S(sin) of Re(D) and the evanescent decay. */
-static inline void pair_integrals(const biref_spectral *sp, double complex d, int diagonal, double c[3], double s[3],
-                                  double att[3])
+static inline void pair_integrals(phase_cache *pc, const path_group *a, const path_group *b, double c[3],
+                                  double s[3], double att[3])
 {
-    if (diagonal) {
+    if (a == b) {
         c[0] = c[1] = c[2] = 1.0;
         s[0] = s[1] = s[2] = 0.0;
     } else {
-        biref_spectral_phase_integrals(sp, creal(d), c, s);
+        const double *cc, *ss;
+        cache_get(pc, a->m - b->m, a->de - b->de, a->ue - b->ue, &cc, &ss);
+        for (int j = 0; j < 3; j++) c[j] = cc[j], s[j] = ss[j];
     }
-    for (int j = 0; j < 3; j++) att[j] = cimag(d) != 0.0 ? exp(-sp->k_centroid[j] * cimag(d)) : 1.0;
+    double im = cimag(a->opl) + cimag(b->opl); /* Im(Phi_a - conj Phi_b): decay of evanescent legs */
+    for (int j = 0; j < 3; j++) att[j] = im != 0.0 ? exp(-pc->sp->k_centroid[j] * im) : 1.0;
 }
 
 /* Fast path for the four pure pairs (input i fully polarized, analyzer passing output o):
@@ -275,19 +339,40 @@ static int expansion_pairs(const biref_spectral *sp, const biref_slab_state *st,
 {
     tail_model tm;
     tail_setup(sp, st, which, forms, 4, &tm);
-    int order = choose_order(sp, st, &tm, which, 4, opts);
+    phase_cache pc;
+    cache_init(&pc, sp, st);
+    int order = choose_order(&pc, st, &tm, which, 4, opts);
     path_group g[EXP_MAX_GROUPS];
     int G = build_groups(st, which, order, g);
     memset(out, 0, 4 * sizeof out[0]);
+    /* Diagonal terms: |M_g|^2 with the decay of evanescent legs. */
+    for (int a = 0; a < G; a++) {
+        double c[3], s[3], att[3];
+        pair_integrals(&pc, &g[a], &g[a], c, s, att);
+        for (int k = 0; k < 4; k++) {
+            double complex v = g[a].M[k >> 1][k & 1];
+            double e = creal(v) * creal(v) + cimag(v) * cimag(v);
+            for (int j = 0; j < 3; j++) out[k][j] += att[j] * e;
+        }
+    }
+    /* Cross terms 2 Re(M_a conj(M_b) S(e^{ik(Phi_a - Phi_b)})). Without evanescent legs (the
+     * common case) there is no decay to apply and the loop is pure multiply-adds. */
+    const int evanescent = st->total_reflection;
     for (int a = 0; a < G; a++)
-        for (int b = a; b < G; b++) {
-            double c[3], s[3], att[3];
-            pair_integrals(sp, g[a].opl - conj(g[b].opl), a == b, c, s, att);
-            double mult = b == a ? 1.0 : 2.0;
+        for (int b = a + 1; b < G; b++) {
+            double ca[3], sa[3], att[3] = {1.0, 1.0, 1.0};
+            const double *c = ca, *s = sa;
+            if (evanescent)
+                pair_integrals(&pc, &g[a], &g[b], ca, sa, att);
+            else
+                cache_get(&pc, g[a].m - g[b].m, g[a].de - g[b].de, g[a].ue - g[b].ue, &c, &s);
+            double c2[3] = {2.0 * att[0] * c[0], 2.0 * att[1] * c[1], 2.0 * att[2] * c[2]};
+            double s2[3] = {2.0 * att[0] * s[0], 2.0 * att[1] * s[1], 2.0 * att[2] * s[2]};
             for (int k = 0; k < 4; k++) {
-                double complex cg = g[a].M[k >> 1][k & 1] * conj(g[b].M[k >> 1][k & 1]);
-                double re = mult * creal(cg), im = mult * cimag(cg);
-                for (int j = 0; j < 3; j++) out[k][j] += att[j] * (re * c[j] - im * s[j]);
+                double complex x = g[a].M[k >> 1][k & 1], y = g[b].M[k >> 1][k & 1];
+                double re = creal(x) * creal(y) + cimag(x) * cimag(y);
+                double im = cimag(x) * creal(y) - creal(x) * cimag(y);
+                for (int j = 0; j < 3; j++) out[k][j] += re * c2[j] - im * s2[j];
             }
         }
     int lowest = which == BIREF_TRANSMISSION ? 0 : 1;
@@ -305,7 +390,9 @@ static int expansion_core(const biref_spectral *sp, const biref_slab_state *st, 
 {
     tail_model tm;
     tail_setup(sp, st, which, forms, nf, &tm);
-    int order = choose_order(sp, st, &tm, which, nf, opts);
+    phase_cache pc;
+    cache_init(&pc, sp, st);
+    int order = choose_order(&pc, st, &tm, which, nf, opts);
     path_group g[EXP_MAX_GROUPS];
     int G = build_groups(st, which, order, g);
     /* N[k][g] = M_g P_k, c_gh = sum C_ij N_g[i][o] conj(N_h[j][o]). */
@@ -320,7 +407,7 @@ static int expansion_core(const biref_spectral *sp, const biref_slab_state *st, 
     for (int a = 0; a < G; a++) {
         for (int b = a; b < G; b++) {
             double c[3], s[3], att[3];
-            pair_integrals(sp, g[a].opl - conj(g[b].opl), a == b, c, s, att);
+            pair_integrals(&pc, &g[a], &g[b], c, s, att);
             double mult = b == a ? 1.0 : 2.0;
             for (int k = 0; k < nf; k++) {
                 double complex cg = 0.0;

@@ -29,7 +29,7 @@ static void help(void)
            "  --scene FILE         scene (default examples/fig9a.json)\n"
            "  --width W            frame width (default 1920)\n"
            "  --height H           frame height (default 1080)\n"
-           "  --methods LIST       comma-separated: analytic, ground-truth, numeric-N (N samples)\n"
+           "  --methods LIST       comma-separated: analytic, expansion, ground-truth, numeric-N\n"
            "                       (default " DEFAULT_METHODS ")\n"
            "  --max-seconds S      time budget per method before extrapolating (default 10)\n"
            "  --threads T          OpenMP threads (default: all cores)\n"
@@ -65,13 +65,15 @@ static int parse_methods(const char *text, bench_method *m, int *n)
             b->opt.method = BIREF_METHOD_ANALYTIC;
         } else if (!strcmp(tok, "ground-truth")) {
             b->opt.method = BIREF_METHOD_GROUND_TRUTH;
+        } else if (!strcmp(tok, "expansion")) {
+            b->opt.method = BIREF_METHOD_EXPANSION;
         } else if (!strncmp(tok, "numeric-", 8)) {
             long s;
             if (cli_parse_int(CMD, "--methods numeric-N", tok + 8, 1, 65536, &s)) return -1;
             b->opt.method = BIREF_METHOD_NUMERIC;
             b->opt.samples = (int)s;
         } else {
-            return cli_error(CMD, "--methods: unknown method '%s' (expected analytic, numeric-N or ground-truth)",
+            return cli_error(CMD, "--methods: unknown method '%s' (expected analytic, expansion, numeric-N or ground-truth)",
                              tok),
                    -1;
         }
@@ -219,18 +221,22 @@ int cmd_bench(int argc, char **argv)
     }
     printf("Scene %s, %dx%d, %d thread%s\n\n", scene_path, W, H, n_threads, n_threads == 1 ? "" : "s");
     printf("%-34s %14s %12s %14s\n", "Spectral integration method", "Frame time", "ns/pixel", "CPU time");
-    /* Grouped as in table 1: analytic first, then numeric by sample count, then ground truth. */
-    for (int pass = 0; pass < 3; pass++) {
-        const biref_method want = pass == 0 ? BIREF_METHOD_ANALYTIC : pass == 1 ? BIREF_METHOD_NUMERIC
-                                                                                 : BIREF_METHOD_GROUND_TRUTH;
+    /* Grouped as in table 1: analytic first, then numeric by sample count, then ground truth;
+     * the path-group expansion (beyond the paper) last. */
+    for (int pass = 0; pass < 4; pass++) {
+        static const biref_method order[4] = {BIREF_METHOD_ANALYTIC, BIREF_METHOD_NUMERIC, BIREF_METHOD_GROUND_TRUTH,
+                                              BIREF_METHOD_EXPANSION};
+        const biref_method want = order[pass];
         int header = 0;
         for (int i = 0; i < n_methods; i++) {
             if (m[i].opt.method != want) continue;
-            if (!header && pass) printf("%s\n", pass == 1 ? "Numeric integration" : "Ground truth");
+            if (!header && pass) printf("%s\n", pass == 1 ? "Numeric integration" : pass == 2 ? "Ground truth" : "Beyond the paper");
             header = 1;
             char label[48], tm[32], cpu[32];
             if (want == BIREF_METHOD_ANALYTIC)
                 snprintf(label, sizeof label, "Analytic approximation");
+            else if (want == BIREF_METHOD_EXPANSION)
+                snprintf(label, sizeof label, "  path-group expansion");
             else
                 snprintf(label, sizeof label, "  %d spectral samples",
                          want == BIREF_METHOD_NUMERIC ? m[i].opt.samples : BIREF_GROUND_TRUTH_SAMPLES);

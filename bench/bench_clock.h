@@ -126,4 +126,39 @@ static double bench_arg_number(const char *opt, const char *val)
     return v;
 }
 
+/* Options every benchmark takes: calibration time, runs, a fixed call count, the RNG seed. */
+typedef struct {
+    double min_time;
+    int runs, runs_given;
+    long fixed_iters;
+    uint64_t seed;
+} bench_common_opts;
+
+static inline void bench_common_defaults(bench_common_opts *o)
+{
+    o->min_time = 0.5;
+    o->runs = 5;
+    o->runs_given = 0;
+    o->fixed_iters = 0;
+    o->seed = 1;
+}
+
+/* Consumes argv[*i] (and its value) if it is a common option; returns 1 if it did. */
+static inline int bench_common_arg(bench_common_opts *o, int argc, char **argv, int *i)
+{
+    const char *a = argv[*i], *v = *i + 1 < argc ? argv[*i + 1] : NULL;
+    if (!strcmp(a, "--min-time"))
+        o->min_time = bench_arg_number(a, v);
+    else if (!strcmp(a, "--runs"))
+        o->runs = (int)bench_arg_number(a, v), o->runs_given = 1;
+    else if (!strcmp(a, "--iterations"))
+        o->fixed_iters = (long)bench_arg_number(a, v);
+    else if (!strcmp(a, "--seed"))
+        o->seed = (uint64_t)bench_arg_number(a, v);
+    else
+        return 0;
+    (*i)++;
+    return 1;
+}
+
 #endif

@@ -135,26 +135,14 @@ static void usage(FILE *f)
 
 int main(int argc, char **argv)
 {
-    double min_time = 0.5;
-    int runs = 5, runs_given = 0, json = 0, do_closed = 1, do_tmm = 1;
-    long fixed_iters = 0;
-    uint64_t seed = 1;
+    bench_common_opts common;
+    bench_common_defaults(&common);
+    int json = 0, do_closed = 1, do_tmm = 1;
     const char *only = NULL; /* --case: a single case, e.g. to profile it under perf */
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "--min-time")) {
-            min_time = bench_arg_number(a, v);
-            i++;
-        } else if (!strcmp(a, "--runs")) {
-            runs = (int)bench_arg_number(a, v);
-            runs_given = 1;
-            i++;
-        } else if (!strcmp(a, "--iterations")) {
-            fixed_iters = (long)bench_arg_number(a, v);
-            i++;
-        } else if (!strcmp(a, "--seed")) {
-            seed = (uint64_t)bench_arg_number(a, v);
-            i++;
+        if (bench_common_arg(&common, argc, argv, &i)) {
+            continue;
         } else if (!strcmp(a, "--case")) {
             if (!v) {
                 fprintf(stderr, "--case needs a name\n");
@@ -177,6 +165,10 @@ int main(int argc, char **argv)
             return 2;
         }
     }
+    double min_time = common.min_time;
+    int runs = common.runs, runs_given = common.runs_given;
+    long fixed_iters = common.fixed_iters;
+    uint64_t seed = common.seed;
     if (!do_closed && !do_tmm) {
         fprintf(stderr, "bench_slab: --closed-form-only and --tmm-only exclude each other\n");
         return 2;

@@ -35,7 +35,7 @@ static const struct {
     {1.775, 1.231, {0.084, 0.979, -0.187}, 1.15e6},
 };
 
-typedef enum { M_PREPARE, M_ANALYTIC, M_NUMERIC } kind;
+typedef enum { M_PREPARE, M_ANALYTIC, M_NUMERIC, M_EXPANSION } kind;
 
 typedef struct {
     biref_slab slab[POOL];
@@ -96,6 +96,9 @@ static double run(void *vctx, long iters)
         case M_NUMERIC:
             biref_spectrum_numeric(c->plan, st, &out);
             break;
+        case M_EXPANSION: /* default adaptive options (tolerance 1e-3) */
+            biref_spectrum_expansion(c->sp, st, NULL, &out);
+            break;
         }
         acc += out.T[0][1][1] + out.R[1][0][2];
     }
@@ -129,26 +132,14 @@ typedef struct {
 
 int main(int argc, char **argv)
 {
-    double min_time = 0.5;
-    int runs = 5, runs_given = 0, json = 0, ground_truth = 1;
-    long fixed_iters = 0;
+    bench_common_opts common;
+    bench_common_defaults(&common);
+    int json = 0, ground_truth = 1;
     const char *only = NULL; /* --method: measure prepare, analytic and this one (for profiling) */
-    uint64_t seed = 1;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "--min-time")) {
-            min_time = bench_arg_number(a, v);
-            i++;
-        } else if (!strcmp(a, "--runs")) {
-            runs = (int)bench_arg_number(a, v);
-            runs_given = 1;
-            i++;
-        } else if (!strcmp(a, "--iterations")) {
-            fixed_iters = (long)bench_arg_number(a, v);
-            i++;
-        } else if (!strcmp(a, "--seed")) {
-            seed = (uint64_t)bench_arg_number(a, v);
-            i++;
+        if (bench_common_arg(&common, argc, argv, &i)) {
+            continue;
         } else if (!strcmp(a, "--method")) {
             if (!v) {
                 fprintf(stderr, "--method needs a name\n");
@@ -169,10 +160,14 @@ int main(int argc, char **argv)
             return 2;
         }
     }
+    double min_time = common.min_time;
+    int runs = common.runs, runs_given = common.runs_given;
+    long fixed_iters = common.fixed_iters;
+    uint64_t seed = common.seed;
 
     /* Method names checked before anything is allocated, so a typo exits cleanly. */
-    static const char *const NAMES[] = {"analytic",    "numeric-3",   "numeric-8",   "numeric-32",
-                                        "numeric-128", "numeric-512", "ground-truth"};
+    static const char *const NAMES[] = {"analytic",    "numeric-3",   "numeric-8", "numeric-32",
+                                        "numeric-128", "numeric-512", "expansion", "ground-truth"};
     if (only) {
         int known = 0;
         for (size_t n = 0; n < sizeof NAMES / sizeof NAMES[0]; n++) known |= !strcmp(only, NAMES[n]);
@@ -209,6 +204,7 @@ int main(int argc, char **argv)
         {.name = "numeric-32", .what = M_NUMERIC, .samples = 32},
         {.name = "numeric-128", .what = M_NUMERIC, .samples = 128},
         {.name = "numeric-512", .what = M_NUMERIC, .samples = 512},
+        {.name = "expansion", .what = M_EXPANSION},
         {.name = "ground-truth", .what = M_NUMERIC, .samples = BIREF_GROUND_TRUTH_SAMPLES},
     };
     const int nrows = (int)(sizeof rows / sizeof rows[0]);

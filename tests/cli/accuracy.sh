@@ -1,20 +1,26 @@
 #!/usr/bin/env bash
 # biref accuracy on a tiny configuration (θ = 0, 40, 80°, two azimuths, a 256-sample reference):
-# the JSON, CSV and markdown outputs carry their documented parts; bad input fails cleanly.
+# the JSON, CSV and markdown outputs carry their documented parts, the cost measurement and the
+# figures work (a few fixed iterations), bad input fails cleanly.
 set -u
 . "$(dirname "$0")/lib.sh"
-tiny=(--theta-max-deg 80 --theta-step-deg 40 --azimuths 2 --samples-ref 256 --samples-check 512 --threads 2)
+grid=(--theta-max-deg 80 --theta-step-deg 40 --azimuths 2 --threads 2)
+tiny=("${grid[@]}" --samples-ref 256 --samples-check 512)
 
 expect_ok "help" accuracy --help
-expect_grep "help lists options" "--samples-ref"
+for opt in --reference-samples --samples-ref --samples-check --cost --cost-only --cost-iterations --plot-dir; do
+  expect_grep "help lists $opt" "$opt"
+done
 
 expect_ok "tiny json" accuracy "${tiny[@]}" --sweep-delta-eps 0.2 --json \
   --csv "$tmpdir/acc.csv" --markdown "$tmpdir/acc.md"
 for key in config materials summary per_theta near_axis psi_max_deg acceptance criterion elapsed_s \
-           theta_deg low high low_chromatic near_axis_chromatic near_axis_up reached_up frac_over_1 phi0; do
+           theta_deg low high grazing low_chromatic near_axis_chromatic near_axis_up reached_up frac_over_1 phi0 \
+           issue5 pass_T pass_R grid_max near_axis_max theta_of_grid_max check_near_axis_stride; do
   expect_grep "key $key" "\"$key\":"
 done
-for method in analytic numeric-8 numeric-32 numeric-128 ref-vs-check analytic-vs-check; do
+for method in analytic expansion numeric-3 numeric-8 numeric-16 numeric-32 numeric-64 numeric-128 ground-truth \
+              ref-vs-check analytic-vs-check expansion-vs-check; do
   expect_grep "method $method" "\"$method\":"
 done
 for name in '"a"' '"b"' '"c"' '"a:de\+0.2"' '"c:de\+0.2"'; do
@@ -27,16 +33,46 @@ if ! head -1 "$tmpdir/acc.csv" | grep -q '^material,base,delta_eps,which,method,
   echo "FAIL (csv header)"
   fails=$((fails + 1))
 fi
-# 6 materials x 3 angles x 4 methods x (T, R), plus the 2 check comparisons x (T, R) of the 3 base
+# 6 materials x 3 angles x 9 methods x (T, R), plus the 3 check comparisons x (T, R) of the 3 base
 # materials at every angle (the check step rounds up to one angle step).
 rows=$(($(wc -l <"$tmpdir/acc.csv") - 1))
-if [ "$rows" -ne $((6 * 3 * 4 * 2 + 3 * 3 * 2 * 2)) ]; then
+if [ "$rows" -ne $((6 * 3 * 9 * 2 + 3 * 3 * 3 * 2)) ]; then
   echo "FAIL (csv rows): $rows"
   fails=$((fails + 1))
 fi
-for section in "Acceptance" "Near the optic axis" "| up |" "reference converged" "sweep" "Per angle"; do
+for section in "Acceptance" "Near the optic axis" "| up |" "reference converged" "sweep" "Per angle" \
+               "Issue #5 (a)" "Cost: not measured"; do
   if ! grep -q "$section" "$tmpdir/acc.md"; then
     echo "FAIL (markdown section $section)"
+    fails=$((fails + 1))
+  fi
+done
+
+# The check integration defaults to 4x the reference.
+expect_ok "check defaults to 4x" accuracy "${grid[@]}" --reference-samples 300 --sweep-delta-eps none --json
+expect_grep "new option name" '"samples_ref":[[:space:]]*300,'
+expect_grep "4x check" '"samples_check":[[:space:]]*1200,'
+
+# Cost per shading sample: a few fixed iterations (as under callgrind), every method, the loop
+# order for callgrind's dumps, and the breakdown by angle range.
+expect_ok "cost only" accuracy --cost-only --cost-iterations 2 --json
+for key in cost prepare order methods by_theta with_prepare alone ns_per_sample cpu_share ratio_to_analytic; do
+  expect_grep "cost key $key" "\"$key\":"
+done
+expect_grep "cost: ground truth timed" '"method":[[:space:]]*"ground-truth"'
+expect_grep "cost: loop order" '"expansion\+prepare@70-85"'
+expect_ok "cost markdown" accuracy --cost-only --cost-iterations 2
+expect_grep "cost table" "^\| expansion \| [0-9]+ \| [0-9]+ \|"
+expect_grep "cost by angle" "^\| 70-85° \|"
+
+# Everything together with the figures: the issue #5 verdicts are present (pass or fail).
+expect_ok "cost and plots" accuracy "${tiny[@]}" --sweep-delta-eps none --cost --cost-iterations 2 \
+  --plot-dir "$tmpdir"
+expect_grep "criterion (a)" '\*\*\(a\): (met|not met)\.\*\*'
+expect_grep "criterion (b)" '\*\*\(b\): (met|not met)\.\*\*|not evaluated'
+for png in accuracy_vs_cost accuracy_vs_theta; do
+  if ! head -c 8 "$tmpdir/$png.png" 2>/dev/null | od -An -c | grep -q 'P   N   G'; then
+    echo "FAIL ($png.png is not a PNG)"
     fails=$((fails + 1))
   fi
 done
@@ -54,6 +90,12 @@ expect_error "theta max 90" accuracy "${tiny[@]}" --theta-max-deg 90
 expect_error "theta step 0" accuracy "${tiny[@]}" --theta-step-deg 0
 expect_error "theta step nan" accuracy "${tiny[@]}" --theta-step-deg nan
 expect_error "zero reference samples" accuracy "${tiny[@]}" --samples-ref 0
+expect_error "zero reference samples (new name)" accuracy "${tiny[@]}" --reference-samples 0
+expect_error "plot dir missing" accuracy "${tiny[@]}" --plot-dir "$tmpdir/no/such/dir"
+expect_error "cost-only with csv" accuracy --cost-only --csv "$tmpdir/x.csv"
+expect_error "cost iterations without cost" accuracy "${tiny[@]}" --cost-iterations 5
+expect_error "zero cost runs" accuracy --cost-only --cost-runs 0
+expect_error "zero cost time" accuracy --cost-only --cost-min-time 0
 expect_error "negative check samples" accuracy "${tiny[@]}" --samples-check -1
 expect_error "zero threads" accuracy "${tiny[@]}" --threads 0
 expect_error "sweep gives eps_e <= 0" accuracy "${tiny[@]}" --sweep-delta-eps -5

@@ -105,7 +105,7 @@ void biref_analyzer_circular(int handedness, double complex P[2][2]);
 typedef struct {
     int order;        /* highest order summed coherently; -1: adaptive (default) */
     double tolerance; /* adaptive: bound on the relative intensity error of truncation (1e-3) */
-    int max_order;    /* adaptive cap (default 12) */
+    int max_order;    /* adaptive cap (default and maximum 8) */
 } biref_expansion_opts;
 
 void biref_expansion_opts_default(biref_expansion_opts *o);

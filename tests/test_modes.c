@@ -33,11 +33,8 @@ static double complex q_e_as_extracted(double eo, double ee, const double A[3], 
 
 static void random_axis(test_rng *r, double A[3])
 {
-    double n;
-    do {
-        for (int i = 0; i < 3; i++) A[i] = test_uniform(r, -1, 1);
-        n = sqrt(A[0] * A[0] + A[1] * A[1] + A[2] * A[2]);
-    } while (n < 0.1 || n > 1.0);
+    test_random_axis(r, A);
+    double n = sqrt(A[0] * A[0] + A[1] * A[1] + A[2] * A[2]);
     for (int i = 0; i < 3; i++) A[i] /= n;
 }
 

@@ -11,11 +11,8 @@
 static void random_slab(test_rng *r, biref_slab *s, double *theta, double *lambda, double d_min, double d_max,
                         double n_lo, double n_hi)
 {
-    double A[3], n;
-    do {
-        for (int i = 0; i < 3; i++) A[i] = test_uniform(r, -1, 1);
-        n = sqrt(A[0] * A[0] + A[1] * A[1] + A[2] * A[2]);
-    } while (n < 0.1 || n > 1);
+    double A[3];
+    test_random_axis(r, A);
     s->eta_o = test_uniform(r, n_lo, n_hi);
     s->eta_e = s->eta_o + test_uniform(r, -0.3, 0.3);
     for (int i = 0; i < 3; i++) s->axis[i] = A[i];

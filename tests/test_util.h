@@ -51,4 +51,15 @@ static inline double test_uniform(test_rng *r, double lo, double hi)
     return lo + (hi - lo) * ((double)(x >> 11) / 9007199254740992.0);
 }
 
+/* A random direction, uniform on the sphere (rejection sampling in the unit ball, shell
+ * 0.1 <= |A| <= 1), returned unnormalised: the library normalises optic axes itself. */
+static inline void test_random_axis(test_rng *r, double A[3])
+{
+    double n;
+    do {
+        for (int i = 0; i < 3; i++) A[i] = test_uniform(r, -1, 1);
+        n = sqrt(A[0] * A[0] + A[1] * A[1] + A[2] * A[2]);
+    } while (n < 0.1 || n > 1);
+}
+
 #endif

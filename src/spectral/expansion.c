@@ -117,6 +117,44 @@ void biref_analyzer_circular(int handedness, double complex P[2][2])
     projector(u, P);
 }
 
+/* When an extraordinary leg has the same optical path down and up (B = C, e.g. an optic axis in
+ * the plane of incidence's normal section), groups differing only in where the e legs sit share
+ * one optical path: they are exactly coherent and are merged into one group per (m, de + ue).
+ * The merge tolerance keeps the phase error of the merged groups below ~0.01 rad at every order. */
+#define DEGENERATE_LEG_NM (0.5 / (2 * EXP_MAX_ORDER + 2))
+
+static int legs_degenerate(const biref_slab_state *st)
+{
+    double b = creal(st->opl_down[1] - st->opl_down[0]), c = creal(st->opl_up[1] - st->opl_up[0]);
+    double bi = cimag(st->opl_down[1] - st->opl_down[0]), ci = cimag(st->opl_up[1] - st->opl_up[0]);
+    return fabs(b - c) < DEGENERATE_LEG_NM && fabs(bi - ci) < DEGENERATE_LEG_NM;
+}
+
+/* Merges groups with equal (m, de + ue) in place; returns the new count. Group order is kept
+ * by order m, so the first group of each class stays where it was. */
+static int merge_degenerate(path_group *g, int G)
+{
+    int n = 0;
+    for (int a = 0; a < G; a++) {
+        int s = g[a].de + g[a].ue, found = -1;
+        for (int b = n - 1; b >= 0 && g[b].m == g[a].m; b--)
+            if (g[b].de == s) {
+                found = b;
+                break;
+            }
+        if (found < 0) {
+            g[n] = g[a];
+            g[n].de = s;
+            g[n].ue = 0;
+            n++;
+        } else {
+            for (int i = 0; i < 2; i++)
+                for (int o = 0; o < 2; o++) g[found].M[i][o] += g[a].M[i][o];
+        }
+    }
+    return n;
+}
+
 /* Group amplitudes by dynamic programming over legs: state = (e legs down, e legs up, current
  * mode), value = row vector over the two inputs. Returns the number of groups. */
 static int build_groups(const biref_slab_state *st, int which, int order, path_group *g)
@@ -298,6 +336,8 @@ static int choose_order(phase_cache *pc, const biref_slab_state *st, const tail_
         for (int y = 0; y < 2; y++)
             if (creal(od[x] + ou[y]) < d_rt) d_rt = creal(od[x] + ou[y]), rx = x, ry = y;
     double coh_cross = band_coherence(pc, 1, rx, ry);
+    /* Degenerate legs (B = C) make this 1: the tail's merged classes are exactly coherent, and the
+     * tail model adds their paths incoherently, so the bound must count them. */
     double coh_intra = fmax(fmax(band_coherence(pc, 0, 1, 0), band_coherence(pc, 0, 0, 1)),
                             fmax(band_coherence(pc, 0, 1, 1), band_coherence(pc, 0, 1, -1)));
     for (int n = 1; n < cap; n++) {
@@ -344,6 +384,7 @@ static int expansion_pairs(const biref_spectral *sp, const biref_slab_state *st,
     int order = choose_order(&pc, st, &tm, which, 4, opts);
     path_group g[EXP_MAX_GROUPS];
     int G = build_groups(st, which, order, g);
+    if (legs_degenerate(st)) G = merge_degenerate(g, G);
     memset(out, 0, 4 * sizeof out[0]);
     /* Diagonal terms: |M_g|^2 with the decay of evanescent legs. */
     for (int a = 0; a < G; a++) {
@@ -395,6 +436,7 @@ static int expansion_core(const biref_spectral *sp, const biref_slab_state *st, 
     int order = choose_order(&pc, st, &tm, which, nf, opts);
     path_group g[EXP_MAX_GROUPS];
     int G = build_groups(st, which, order, g);
+    if (legs_degenerate(st)) G = merge_degenerate(g, G);
     /* N[k][g] = M_g P_k, c_gh = sum C_ij N_g[i][o] conj(N_h[j][o]). */
     double complex N[EXP_MAX_FORMS][EXP_MAX_GROUPS][2][2];
     for (int k = 0; k < nf; k++)

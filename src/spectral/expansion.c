@@ -33,7 +33,7 @@ typedef struct {
  * queried once per distinct difference (a small hash on the stack), not once per pair. */
 static inline int phase_key(int m, int de, int ue) { return (m + 32) * 4096 + (de + 32) * 64 + (ue + 32); }
 
-enum { CACHE_SLOTS = 256, CACHE_MAX_FILL = 192 };
+enum { CACHE_SLOTS = 1024, CACHE_MAX_FILL = 768 };
 
 typedef struct {
     int key[CACHE_SLOTS];
@@ -54,30 +54,69 @@ static void cache_init(phase_cache *pc, const biref_spectral *sp, const biref_sl
     pc->fill = 0;
 }
 
-/* S(cos), S(sin) at the real path difference with integer coordinates (dm, dde, due). */
-static void cache_get(phase_cache *pc, int dm, int dde, int due, const double **c, const double **s)
+/* Slot of the path difference with integer coordinates (dm, dde, due), its S(cos), S(sin)
+ * computed on first use; -1 once the table is 3/4 full (keeps probes short at high orders). */
+static int cache_slot(phase_cache *pc, int dm, int dde, int due)
 {
     int key = phase_key(dm, dde, due);
-    unsigned h = ((unsigned)key * 2654435761u) >> 24; /* 8 bits */
+    unsigned h = ((unsigned)key * 2654435761u) >> 22; /* 10 bits */
     for (;;) {
-        if (pc->key[h] == key) break;
+        if (pc->key[h] == key) return (int)h;
         if (pc->key[h] < 0) {
-            double d = dm * pc->A + dde * pc->B + due * pc->C;
-            if (pc->fill >= CACHE_MAX_FILL) { /* keep probes short: compute without caching */
-                biref_spectral_phase_integrals(pc->sp, d, pc->spill_c, pc->spill_s);
-                *c = pc->spill_c;
-                *s = pc->spill_s;
-                return;
-            }
+            if (pc->fill >= CACHE_MAX_FILL) return -1;
             pc->key[h] = key;
             pc->fill++;
-            biref_spectral_phase_integrals(pc->sp, d, pc->c[h], pc->s[h]);
-            break;
+            biref_spectral_phase_integrals(pc->sp, dm * pc->A + dde * pc->B + due * pc->C, pc->c[h], pc->s[h]);
+            return (int)h;
         }
         h = (h + 1) & (CACHE_SLOTS - 1u);
     }
+}
+
+/* S(cos), S(sin) at the real path difference with integer coordinates (dm, dde, due). */
+static void cache_get(phase_cache *pc, int dm, int dde, int due, const double **c, const double **s)
+{
+    int h = cache_slot(pc, dm, dde, due);
+    if (h < 0) {
+        biref_spectral_phase_integrals(pc->sp, dm * pc->A + dde * pc->B + due * pc->C, pc->spill_c, pc->spill_s);
+        *c = pc->spill_c;
+        *s = pc->spill_s;
+        return;
+    }
     *c = pc->c[h];
     *s = pc->s[h];
+}
+
+/* Without evanescent legs a pair's contribution is 2 Re(c_ab S(e^{ik D_ab})) and depends on the
+ * pair only through c_ab and the slot of D_ab: c_ab is summed per slot first (one complex
+ * multiply-add per pair and form), and the band integrals applied once per distinct difference
+ * — the autocorrelation of the group amplitudes over the integer path-difference lattice. */
+typedef struct {
+    double complex acc[CACHE_SLOTS][EXP_MAX_FORMS];
+    unsigned char used[CACHE_SLOTS];
+    short list[CACHE_SLOTS];
+    int n;
+} slot_sums;
+
+static inline double complex *slot_acc(slot_sums *ss, int h, int nf)
+{
+    if (!ss->used[h]) {
+        ss->used[h] = 1;
+        ss->list[ss->n++] = (short)h;
+        for (int k = 0; k < nf; k++) ss->acc[h][k] = 0.0;
+    }
+    return ss->acc[h];
+}
+
+static void slot_sums_apply(const slot_sums *ss, const phase_cache *pc, int nf, double out[][3])
+{
+    for (int t = 0; t < ss->n; t++) {
+        int h = ss->list[t];
+        for (int k = 0; k < nf; k++) {
+            double re = 2.0 * creal(ss->acc[h][k]), im = 2.0 * cimag(ss->acc[h][k]);
+            for (int j = 0; j < 3; j++) out[k][j] += re * pc->c[h][j] - im * pc->s[h][j];
+        }
+    }
 }
 
 void biref_expansion_opts_default(biref_expansion_opts *o)
@@ -116,6 +155,7 @@ void biref_analyzer_circular(int handedness, double complex P[2][2])
     double complex u[2] = {M_SQRT1_2, (handedness >= 0 ? I : -I) * M_SQRT1_2};
     projector(u, P);
 }
+
 
 /* When an extraordinary leg has the same optical path down and up (B = C, e.g. an optic axis in
  * the plane of incidence's normal section), groups differing only in where the e legs sit share
@@ -399,23 +439,25 @@ static int expansion_pairs(const biref_spectral *sp, const biref_slab_state *st,
     /* Cross terms 2 Re(M_a conj(M_b) S(e^{ik(Phi_a - Phi_b)})). Without evanescent legs (the
      * common case) there is no decay to apply and the loop is pure multiply-adds. */
     const int evanescent = st->total_reflection;
+    slot_sums ss;
+    ss.n = 0;
+    memset(ss.used, 0, sizeof ss.used);
     for (int a = 0; a < G; a++)
         for (int b = a + 1; b < G; b++) {
-            double ca[3], sa[3], att[3] = {1.0, 1.0, 1.0};
-            const double *c = ca, *s = sa;
-            if (evanescent)
-                pair_integrals(&pc, &g[a], &g[b], ca, sa, att);
-            else
-                cache_get(&pc, g[a].m - g[b].m, g[a].de - g[b].de, g[a].ue - g[b].ue, &c, &s);
-            double c2[3] = {2.0 * att[0] * c[0], 2.0 * att[1] * c[1], 2.0 * att[2] * c[2]};
-            double s2[3] = {2.0 * att[0] * s[0], 2.0 * att[1] * s[1], 2.0 * att[2] * s[2]};
+            int h = evanescent ? -1 : cache_slot(&pc, g[a].m - g[b].m, g[a].de - g[b].de, g[a].ue - g[b].ue);
+            if (h >= 0) {
+                double complex *acc = slot_acc(&ss, h, 4);
+                for (int k = 0; k < 4; k++) acc[k] += g[a].M[k >> 1][k & 1] * conj(g[b].M[k >> 1][k & 1]);
+                continue;
+            }
+            double c[3], s[3], att[3];
+            pair_integrals(&pc, &g[a], &g[b], c, s, att);
             for (int k = 0; k < 4; k++) {
-                double complex x = g[a].M[k >> 1][k & 1], y = g[b].M[k >> 1][k & 1];
-                double re = creal(x) * creal(y) + cimag(x) * cimag(y);
-                double im = cimag(x) * creal(y) - creal(x) * cimag(y);
-                for (int j = 0; j < 3; j++) out[k][j] += re * c2[j] - im * s2[j];
+                double complex v = g[a].M[k >> 1][k & 1] * conj(g[b].M[k >> 1][k & 1]);
+                for (int j = 0; j < 3; j++) out[k][j] += 2.0 * att[j] * (creal(v) * c[j] - cimag(v) * s[j]);
             }
         }
+    slot_sums_apply(&ss, &pc, 4, out);
     int lowest = which == BIREF_TRANSMISSION ? 0 : 1;
     for (int k = 0; k < 4; k++) {
         double tail[3];
@@ -446,10 +488,16 @@ static int expansion_core(const biref_spectral *sp, const biref_slab_state *st, 
                     N[k][a][i][o] = forms[k].P ? g[a].M[i][0] * forms[k].P[0][o] + g[a].M[i][1] * forms[k].P[1][o]
                                                : g[a].M[i][o];
     for (int k = 0; k < nf; k++) out[k][0] = out[k][1] = out[k][2] = 0.0;
+    const int evanescent = st->total_reflection;
+    slot_sums ss;
+    ss.n = 0;
+    memset(ss.used, 0, sizeof ss.used);
     for (int a = 0; a < G; a++) {
         for (int b = a; b < G; b++) {
-            double c[3], s[3], att[3];
-            pair_integrals(&pc, &g[a], &g[b], c, s, att);
+            int h = (evanescent || a == b) ? -1 : cache_slot(&pc, g[a].m - g[b].m, g[a].de - g[b].de, g[a].ue - g[b].ue);
+            double c[3] = {0, 0, 0}, s[3] = {0, 0, 0}, att[3] = {1, 1, 1};
+            if (h < 0) pair_integrals(&pc, &g[a], &g[b], c, s, att);
+            double complex *acc = h >= 0 ? slot_acc(&ss, h, nf) : NULL;
             double mult = b == a ? 1.0 : 2.0;
             for (int k = 0; k < nf; k++) {
                 double complex cg = 0.0;
@@ -459,10 +507,14 @@ static int expansion_core(const biref_spectral *sp, const biref_slab_state *st, 
                         if (C[i][jj] == 0.0) continue;
                         cg += C[i][jj] * (N[k][a][i][0] * conj(N[k][b][jj][0]) + N[k][a][i][1] * conj(N[k][b][jj][1]));
                     }
-                for (int j = 0; j < 3; j++) out[k][j] += mult * att[j] * (creal(cg) * c[j] - cimag(cg) * s[j]);
+                if (acc)
+                    acc[k] += cg;
+                else
+                    for (int j = 0; j < 3; j++) out[k][j] += mult * att[j] * (creal(cg) * c[j] - cimag(cg) * s[j]);
             }
         }
     }
+    slot_sums_apply(&ss, &pc, nf, out);
     int lowest = which == BIREF_TRANSMISSION ? 0 : 1;
     for (int k = 0; k < nf; k++) {
         double tail[3];

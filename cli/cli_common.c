@@ -128,9 +128,7 @@ int cli_slab_opts_finish(const char *cmd, cli_slab_opts *o)
     if (biref_slab_check(&o->slab, msg, sizeof msg) != BIREF_OK) return cli_error(cmd, "%s", msg), -1;
     if (biref_theta_check(o->theta_deg * M_PI / 180.0, msg, sizeof msg) != BIREF_OK)
         return cli_error(cmd, "--theta-deg: %s", msg), -1;
-    double n = sqrt(o->slab.axis[0] * o->slab.axis[0] + o->slab.axis[1] * o->slab.axis[1] +
-                    o->slab.axis[2] * o->slab.axis[2]);
-    for (int i = 0; i < 3; i++) o->slab.axis[i] /= n;
+    biref_axis_normalize(o->slab.axis, o->slab.axis); /* checked by biref_slab_check */
     return 0;
 }
 

@@ -1675,9 +1675,7 @@ int cmd_accuracy(int argc, char **argv)
     FILE *csv = NULL, *md = NULL;
     for (int i = 0; i < run.nbase; i++) {
         run.mat[i] = base[i];
-        double n2 = sqrt(base[i].slab.axis[0] * base[i].slab.axis[0] + base[i].slab.axis[1] * base[i].slab.axis[1] +
-                         base[i].slab.axis[2] * base[i].slab.axis[2]);
-        for (int k = 0; k < 3; k++) run.mat[i].slab.axis[k] /= n2;
+        biref_axis_normalize(base[i].slab.axis, run.mat[i].slab.axis);
         run.mat[i].delta_eps = base[i].slab.eta_e * base[i].slab.eta_e - base[i].slab.eta_o * base[i].slab.eta_o;
     }
     for (int i = 0; i < run.nbase; i++)

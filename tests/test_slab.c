@@ -193,6 +193,21 @@ int main(void)
     CHECK(biref_path_count(BIREF_TRANSMISSION, 2) == 2 + 8 + 32);
     CHECK(biref_path_count(BIREF_REFLECTION, 2) == 1 + 4 + 16);
     CHECK(biref_path_count(BIREF_REFLECTION, 13) == 0);
+    /* 5c. A huge or tiny (but non-zero) finite axis means the same direction: no overflow. */
+    {
+        biref_slab a = {1.5, 1.6, {1, 0, 1}, 5000, 1.0}, b = a, c = a;
+        b.axis[0] = b.axis[2] = 1e300;
+        c.axis[0] = c.axis[2] = 1e-6;
+        biref_jones Ta, Tb, Tc;
+        CHECK(biref_slab_jones(&a, 0.5, 550, &Ta, NULL) == BIREF_OK);
+        CHECK(biref_slab_jones(&b, 0.5, 550, &Tb, NULL) == BIREF_OK);
+        CHECK(biref_slab_jones(&c, 0.5, 550, &Tc, NULL) == BIREF_OK);
+        for (int i = 0; i < 2; i++)
+            for (int o = 0; o < 2; o++) CHECK(cabs(Ta.m[i][o] - Tb.m[i][o]) < 1e-14 && cabs(Ta.m[i][o] - Tc.m[i][o]) < 1e-14);
+        double u[3], zero[3] = {0, 0, 1e-13};
+        CHECK(biref_axis_normalize(b.axis, u) == BIREF_OK && fabs(u[0] - M_SQRT1_2) < 1e-15 && u[1] == 0.0);
+        CHECK(biref_axis_normalize(zero, u) == BIREF_ERR_INVALID);
+    }
     /* 6. Bad input. */
     {
         biref_slab good = {1.5, 1.6, {0, 0, 1}, 1000, 1.0};

@@ -34,6 +34,11 @@ typedef struct {
 biref_medium biref_medium_isotropic(double eta);
 biref_medium biref_medium_uniaxial(double eta_o, double eta_e, const double axis[3]);
 
+/* The unit vector along an optic axis, scaled by its largest component first so that huge or tiny
+ * finite axes neither overflow nor underflow. BIREF_ERR_INVALID for a non-finite axis or a zero
+ * one (|axis| <= 1e-12). unit may alias axis. */
+biref_status biref_axis_normalize(const double axis[3], double unit[3]);
+
 /* Checks a medium; on failure writes a one-line reason into msg (may be NULL). */
 biref_status biref_medium_check(const biref_medium *m, char *msg, size_t msg_len);
 

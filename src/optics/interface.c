@@ -100,23 +100,12 @@ biref_status biref_interface_from_modes(const biref_modes *up, const biref_modes
     return BIREF_OK;
 }
 
-static void modes_of(const biref_medium *m, double K, biref_modes *out)
-{
-    if (m->isotropic)
-        biref_isotropic_modes(m->eta_o, K, out);
-    else
-        biref_uniaxial_modes(m->eta_o, m->eta_e, m->axis, K, out);
-}
-
 biref_status biref_interface_solve(const biref_medium *upper, const biref_medium *lower, double K,
                                    biref_interface *out)
 {
-    biref_status s = biref_medium_check(upper, NULL, 0);
-    if (s == BIREF_OK) s = biref_medium_check(lower, NULL, 0);
-    if (s != BIREF_OK) return s;
-    if (!isfinite(K) || K < 0.0) return BIREF_ERR_INVALID;
     biref_modes mu, ml;
-    modes_of(upper, K, &mu);
-    modes_of(lower, K, &ml);
+    biref_status s = biref_medium_modes(upper, K, &mu); /* validates the medium and K */
+    if (s == BIREF_OK) s = biref_medium_modes(lower, K, &ml);
+    if (s != BIREF_OK) return s;
     return biref_interface_from_modes(&mu, &ml, out);
 }

@@ -102,12 +102,11 @@ void biref_isotropic_modes(double eta, double K, biref_modes *m)
  * point o and e are degenerate and any orthogonal transverse pair is an exact basis. */
 #define DEGENERATE_REL 1e-9
 
-void biref_uniaxial_modes(double eta_o, double eta_e, const double axis_in[3], double K, biref_modes *m)
+void biref_uniaxial_modes(double eta_o, double eta_e, const double A[3], double K, biref_modes *m)
 {
     memset(m, 0, sizeof *m);
     m->K = K;
-    double an = sqrt(axis_in[0] * axis_in[0] + axis_in[1] * axis_in[1] + axis_in[2] * axis_in[2]);
-    double al = axis_in[0] / an, be = axis_in[1] / an, ga = axis_in[2] / an;
+    double al = A[0], be = A[1], ga = A[2];
     double eo = eta_o * eta_o, ee = eta_e * eta_e, de = ee - eo;
 
     /* Ordinary: |k|^2 = eps_o (eq. 2). */
@@ -168,9 +167,12 @@ biref_status biref_medium_modes(const biref_medium *med, double K, biref_modes *
     biref_status s = biref_medium_check(med, NULL, 0);
     if (s != BIREF_OK) return s;
     if (!isfinite(K) || K < 0.0) return BIREF_ERR_INVALID;
-    if (med->isotropic)
+    if (med->isotropic) {
         biref_isotropic_modes(med->eta_o, K, out);
-    else
-        biref_uniaxial_modes(med->eta_o, med->eta_e, med->axis, K, out);
+    } else {
+        double A[3];
+        biref_axis_normalize(med->axis, A); /* checked above */
+        biref_uniaxial_modes(med->eta_o, med->eta_e, A, K, out);
+    }
     return BIREF_OK;
 }

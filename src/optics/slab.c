@@ -6,6 +6,7 @@
 #include "biref/optics.h"
 #include "optics/cmat2.h"
 #include "optics/modes_internal.h"
+#include "optics/validate.h"
 
 biref_status biref_slab_prepare(const biref_slab *slab, double theta, biref_slab_state *st)
 {
@@ -14,8 +15,7 @@ biref_status biref_slab_prepare(const biref_slab *slab, double theta, biref_slab
     if (s != BIREF_OK) return s;
     memset(st, 0, sizeof *st);
     st->slab = *slab;
-    double an = sqrt(slab->axis[0] * slab->axis[0] + slab->axis[1] * slab->axis[1] + slab->axis[2] * slab->axis[2]);
-    for (int i = 0; i < 3; i++) st->slab.axis[i] = slab->axis[i] / an;
+    biref_axis_normalize(slab->axis, st->slab.axis); /* checked above */
     st->theta = theta;
     st->K = slab->eta_i * sin(theta); /* eq. 1 */
 
@@ -109,7 +109,7 @@ void biref_slab_jones_at(const biref_slab_state *st, double lambda_nm, biref_jon
 biref_status biref_slab_jones(const biref_slab *slab, double theta, double lambda_nm, biref_jones *T,
                               biref_jones *R)
 {
-    if (!isfinite(lambda_nm) || lambda_nm <= 0.0) return BIREF_ERR_INVALID;
+    if (biref_check_lambda(lambda_nm, NULL, 0) != BIREF_OK) return BIREF_ERR_INVALID;
     biref_slab_state st;
     biref_status s = biref_slab_prepare(slab, theta, &st);
     if (s != BIREF_OK) return s;

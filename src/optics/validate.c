@@ -24,12 +24,31 @@ biref_status biref_check_index(const char *name, double eta, char *msg, size_t m
     return BIREF_OK;
 }
 
+/* |axis| and the axis scaled by its largest component (m = 0 for the zero vector). */
+static double axis_norm(const double axis[3], double scaled[3])
+{
+    double m = fmax(fabs(axis[0]), fmax(fabs(axis[1]), fabs(axis[2])));
+    for (int i = 0; i < 3; i++) scaled[i] = m > 0.0 ? axis[i] / m : 0.0;
+    return m * sqrt(scaled[0] * scaled[0] + scaled[1] * scaled[1] + scaled[2] * scaled[2]);
+}
+
 biref_status biref_check_axis(const double axis[3], char *msg, size_t msg_len)
 {
     for (int i = 0; i < 3; i++)
         if (!isfinite(axis[i])) return biref_fail(msg, msg_len, "optic axis component %d is not finite", i);
-    double n = sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
-    if (!(n > 1e-12)) return biref_fail(msg, msg_len, "optic axis must be non-zero");
+    double scaled[3];
+    if (!(axis_norm(axis, scaled) > 1e-12)) return biref_fail(msg, msg_len, "optic axis must be non-zero");
+    return BIREF_OK;
+}
+
+biref_status biref_axis_normalize(const double axis[3], double unit[3])
+{
+    biref_status s = biref_check_axis(axis, NULL, 0);
+    if (s != BIREF_OK) return s;
+    double scaled[3];
+    axis_norm(axis, scaled);
+    double inv = 1.0 / sqrt(scaled[0] * scaled[0] + scaled[1] * scaled[1] + scaled[2] * scaled[2]);
+    for (int i = 0; i < 3; i++) unit[i] = scaled[i] * inv;
     return BIREF_OK;
 }
 

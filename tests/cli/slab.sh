@@ -14,6 +14,8 @@ expect_ok "tmm" slab "${good[@]}" --method tmm --json
 expect_grep "tmm method" '"method":[[:space:]]*"tmm"'
 expect_ok "table" slab "${good[@]}"
 expect_grep "table energy" "Energy check"
+expect_ok "huge but finite axis" slab --eta-o 1.5 --eta-e 1.6 --axis 1e300,0,1e300 --thickness-um 10 --json
+expect_grep "huge axis normalised" '0.7071067811865'
 expect_ok "thickness in mm" slab --eta-o 1.5 --eta-e 1.6 --axis 0,0,1 --thickness-mm 0.01 --json
 
 base=(--eta-e 1.6 --axis 0.3,0.5,0.8 --thickness-um 10)

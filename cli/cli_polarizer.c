@@ -67,3 +67,23 @@ int cli_parse_general_analyzer(const char *cmd, const char *opt, const char *tex
     }
     return 0;
 }
+
+int cli_parse_expansion_order(const char *cmd, const char *text, biref_expansion_opts *o)
+{
+    long v;
+    if (cli_parse_int(cmd, "--order", text, 0, BIREF_EXPANSION_MAX_ORDER, &v)) return -1;
+    o->order = (int)v;
+    return 0;
+}
+
+int cli_parse_expansion_tolerance(const char *cmd, const char *text, biref_expansion_opts *o)
+{
+    double t;
+    if (cli_parse_double(cmd, "--tolerance", text, &t)) return -1;
+    if (!(t > 0.0 && t < 1.0)) {
+        cli_error(cmd, "--tolerance: must be in (0, 1), got %g", t);
+        return -1;
+    }
+    o->tolerance = t;
+    return 0;
+}

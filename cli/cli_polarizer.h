@@ -6,6 +6,8 @@
 
 #include <complex.h>
 
+#include "biref/biref.h"
+
 /* "linear:DEG", "circular:+1" / "circular:-1" (or "circular:left"/"circular:right" are not
  * accepted: handedness is the sign of S3, see docs/PHYSICS.md §5) -> Stokes vector. */
 int cli_parse_polarizer_state(const char *cmd, const char *opt, const char *text, double stokes[4]);
@@ -14,5 +16,10 @@ int cli_parse_stokes(const char *cmd, const char *opt, const char *text, double 
 /* "linear:DEG" or "circular:+1|-1" -> analyzer projector P[in][out]. Returns 1 if text is one of
  * these general forms, 0 if it is not (the caller tries its simple forms), -1 on error. */
 int cli_parse_general_analyzer(const char *cmd, const char *opt, const char *text, double complex P[2][2]);
+
+/* --order N (0 .. BIREF_EXPANSION_MAX_ORDER) and --tolerance E (0 < E < 1) of the path-group
+ * expansion, shared by biref spectrum and biref render. Return 0 or print one error. */
+int cli_parse_expansion_order(const char *cmd, const char *text, biref_expansion_opts *o);
+int cli_parse_expansion_tolerance(const char *cmd, const char *text, biref_expansion_opts *o);
 
 #endif

@@ -5,6 +5,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "cli_polarizer.h"
 #include "cli_render.h"
 #include "commands.h"
 #include "json_out.h"
@@ -86,18 +87,12 @@ int cmd_render(int argc, char **argv)
         case OPT_THREADS:
             if (cli_parse_int(CMD, "--threads", optarg, 1, 1024, &threads)) return CLI_EXIT_USAGE;
             break;
-        case OPT_ORDER: {
-            long v;
-            if (cli_parse_int(CMD, "--order", optarg, 0, 8, &v)) return CLI_EXIT_USAGE;
-            opt.expansion.order = (int)v;
+        case OPT_ORDER:
+            if (cli_parse_expansion_order(CMD, optarg, &opt.expansion)) return CLI_EXIT_USAGE;
             have_expansion_opt = 1;
             break;
-        }
         case OPT_TOLERANCE:
-            if (cli_parse_double(CMD, "--tolerance", optarg, &opt.expansion.tolerance)) return CLI_EXIT_USAGE;
-            if (!(opt.expansion.tolerance > 0.0 && opt.expansion.tolerance < 1.0))
-                return cli_error(CMD, "--tolerance: must be in (0, 1), got %g", opt.expansion.tolerance),
-                       CLI_EXIT_USAGE;
+            if (cli_parse_expansion_tolerance(CMD, optarg, &opt.expansion)) return CLI_EXIT_USAGE;
             have_expansion_opt = 1;
             break;
         case OPT_PFM: pfm = optarg; break;

@@ -172,17 +172,12 @@ int cmd_spectrum(int argc, char **argv)
             general_in = 1;
             snprintf(pol_text, sizeof pol_text, "stokes:%s", optarg);
             break;
-        case OPT_ORDER: {
-            long v;
-            if (cli_parse_int(CMD, "--order", optarg, 0, 8, &v)) return CLI_EXIT_USAGE;
-            eopts.order = (int)v;
+        case OPT_ORDER:
+            if (cli_parse_expansion_order(CMD, optarg, &eopts)) return CLI_EXIT_USAGE;
             have_order = 1;
             break;
-        }
         case OPT_TOLERANCE:
-            if (cli_parse_double(CMD, "--tolerance", optarg, &eopts.tolerance)) return CLI_EXIT_USAGE;
-            if (!(eopts.tolerance > 0.0 && eopts.tolerance < 1.0))
-                return cli_error(CMD, "--tolerance: must be in (0, 1), got %g", eopts.tolerance), CLI_EXIT_USAGE;
+            if (cli_parse_expansion_tolerance(CMD, optarg, &eopts)) return CLI_EXIT_USAGE;
             have_tol = 1;
             break;
         case OPT_JSON: json = 1; break;

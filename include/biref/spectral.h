@@ -102,6 +102,8 @@ biref_status biref_stokes_to_coherency(const double stokes[4], double complex C[
 void biref_analyzer_linear(double psi_rad, double complex P[2][2]);
 void biref_analyzer_circular(int handedness, double complex P[2][2]);
 
+#define BIREF_EXPANSION_MAX_ORDER 8
+
 typedef struct {
     int order;        /* highest order summed coherently; -1: adaptive (default) */
     double tolerance; /* adaptive: bound on the relative intensity error of truncation (1e-3) */

@@ -16,7 +16,7 @@
 
 #include "spectral/spectral_internal.h"
 
-#define EXP_MAX_ORDER 8
+#define EXP_MAX_ORDER BIREF_EXPANSION_MAX_ORDER
 /* Transmission: sum_{m<=8} (m+2)(m+1) = 330 groups; reflection: 1 + sum_{m=1..8} (m+1)^2 = 285. */
 #define EXP_MAX_GROUPS 330
 #define EXP_MAX_FORMS 4

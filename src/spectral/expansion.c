@@ -29,19 +29,21 @@ typedef struct {
 
 /* Every optical path is a + m A + n_de B + n_ue C with A a round trip of ordinary legs and
  * B, C the extra path of an extraordinary leg down / up, so the real part of a pairwise
- * difference depends only on the difference of the integer coordinates: the look-up table is
- * queried once per distinct difference (a small hash on the stack), not once per pair. */
+ * difference depends only on the difference of the integer coordinates (a lag): the band
+ * integrals are needed once per distinct lag, not once per pair. */
 static inline int phase_key(int m, int de, int ue) { return (m + 32) * 4096 + (de + 32) * 64 + (ue + 32); }
 
 enum { CACHE_SLOTS = 1024, CACHE_MAX_FILL = 768 };
 
 typedef struct {
+    const biref_spectral *sp;
+    double A, B, C; /* real parts, nm */
+    /* Lags between different orders (dm != 0): a small open-addressing hash, initialised on
+     * first use (thick slabs never need it: see block_pair_vanishes). */
+    int hash_ready;
     int key[CACHE_SLOTS];
     int fill;
     double c[CACHE_SLOTS][3], s[CACHE_SLOTS][3];
-    double spill_c[3], spill_s[3]; /* uncached result once the table is 3/4 full (high orders) */
-    const biref_spectral *sp;
-    double A, B, C; /* real parts, nm */
 } phase_cache;
 
 static void cache_init(phase_cache *pc, const biref_spectral *sp, const biref_slab_state *st)
@@ -50,14 +52,23 @@ static void cache_init(phase_cache *pc, const biref_spectral *sp, const biref_sl
     pc->A = creal(st->opl_down[0] + st->opl_up[0]);
     pc->B = creal(st->opl_down[1] - st->opl_down[0]);
     pc->C = creal(st->opl_up[1] - st->opl_up[0]);
-    for (int i = 0; i < CACHE_SLOTS; i++) pc->key[i] = -1;
-    pc->fill = 0;
+    pc->hash_ready = 0;
 }
 
-/* Slot of the path difference with integer coordinates (dm, dde, due), its S(cos), S(sin)
- * computed on first use; -1 once the table is 3/4 full (keeps probes short at high orders). */
+static inline double lag_opd(const phase_cache *pc, int dm, int dde, int due)
+{
+    return dm * pc->A + dde * pc->B + due * pc->C;
+}
+
+/* Hash slot of the lag (dm, dde, due), its S(cos), S(sin) computed on first use; -1 once the
+ * table is 3/4 full (keeps probes short for thin slabs at high orders). */
 static int cache_slot(phase_cache *pc, int dm, int dde, int due)
 {
+    if (!pc->hash_ready) {
+        for (int i = 0; i < CACHE_SLOTS; i++) pc->key[i] = -1;
+        pc->fill = 0;
+        pc->hash_ready = 1;
+    }
     int key = phase_key(dm, dde, due);
     unsigned h = ((unsigned)key * 2654435761u) >> 22; /* 10 bits */
     for (;;) {
@@ -66,55 +77,162 @@ static int cache_slot(phase_cache *pc, int dm, int dde, int due)
             if (pc->fill >= CACHE_MAX_FILL) return -1;
             pc->key[h] = key;
             pc->fill++;
-            biref_spectral_phase_integrals(pc->sp, dm * pc->A + dde * pc->B + due * pc->C, pc->c[h], pc->s[h]);
+            biref_spectral_phase_integrals(pc->sp, lag_opd(pc, dm, dde, due), pc->c[h], pc->s[h]);
             return (int)h;
         }
         h = (h + 1) & (CACHE_SLOTS - 1u);
     }
 }
 
-/* S(cos), S(sin) at the real path difference with integer coordinates (dm, dde, due). */
-static void cache_get(phase_cache *pc, int dm, int dde, int due, const double **c, const double **s)
-{
-    int h = cache_slot(pc, dm, dde, due);
-    if (h < 0) {
-        biref_spectral_phase_integrals(pc->sp, dm * pc->A + dde * pc->B + due * pc->C, pc->spill_c, pc->spill_s);
-        *c = pc->spill_c;
-        *s = pc->spill_s;
-        return;
-    }
-    *c = pc->c[h];
-    *s = pc->s[h];
-}
+/* The detected intensity of a form is sum_{a,b} <v_a, v_b> e^{ik(Phi_a - conj Phi_b)}, with one
+ * vector v_g of up to MAX_COMP components per group (the coherency matrix and the analyzer
+ * factored as sums of outer products, see form_vectors): the pair sums below work per
+ * component and never see the polarizers. */
+enum { MAX_COMP = 4 };
+/* Same-order lags: dde in [-(2 max + 1), 2 max + 1] (merged degenerate groups carry de + ue),
+ * due in [-max, max]. */
+#define LAG0_DE (2 * (2 * EXP_MAX_ORDER + 1) + 1)
+#define LAG0_UE (2 * EXP_MAX_ORDER + 1)
 
-/* Without evanescent legs a pair's contribution is 2 Re(c_ab S(e^{ik D_ab})) and depends on the
- * pair only through c_ab and the slot of D_ab: c_ab is summed per slot first (one complex
- * multiply-add per pair and form), and the band integrals applied once per distinct difference
- * — the autocorrelation of the group amplitudes over the integer path-difference lattice. */
 typedef struct {
-    double complex acc[CACHE_SLOTS][EXP_MAX_FORMS];
+    double complex lag0[LAG0_DE * LAG0_UE][MAX_COMP]; /* dm = 0, dense */
+    double complex hash[CACHE_SLOTS][MAX_COMP];       /* dm != 0, per hash slot */
     unsigned char used[CACHE_SLOTS];
     short list[CACHE_SLOTS];
     int n;
-} slot_sums;
+} pair_accumulator;
 
-static inline double complex *slot_acc(slot_sums *ss, int h, int nf)
+/* Whether every pair between the groups [a0, a1) and [b0, b1) (different orders) has a real
+ * path difference beyond the look-up table's far limit, where the band integrals are exactly
+ * zero: the difference is linear in the integer lags, so its range over the box of lags is
+ * spanned by the box's corners. For mm-thick slabs a round trip is far beyond it, and every
+ * cross-order block is skipped; the pair count then falls from ~G^2/2 to ~sum_m G_m^2/2. */
+static int block_pair_vanishes(const phase_cache *pc, const path_group *g, int a0, int a1, int b0, int b1)
 {
-    if (!ss->used[h]) {
-        ss->used[h] = 1;
-        ss->list[ss->n++] = (short)h;
-        for (int k = 0; k < nf; k++) ss->acc[h][k] = 0.0;
+    int lo[3] = {1 << 20, 1 << 20, 1 << 20}, hi[3] = {-(1 << 20), -(1 << 20), -(1 << 20)};
+    int lo2[3] = {1 << 20, 1 << 20, 1 << 20}, hi2[3] = {-(1 << 20), -(1 << 20), -(1 << 20)};
+    for (int a = a0; a < a1; a++) {
+        int x[3] = {g[a].m, g[a].de, g[a].ue};
+        for (int i = 0; i < 3; i++) lo[i] = x[i] < lo[i] ? x[i] : lo[i], hi[i] = x[i] > hi[i] ? x[i] : hi[i];
     }
-    return ss->acc[h];
+    for (int b = b0; b < b1; b++) {
+        int x[3] = {g[b].m, g[b].de, g[b].ue};
+        for (int i = 0; i < 3; i++) lo2[i] = x[i] < lo2[i] ? x[i] : lo2[i], hi2[i] = x[i] > hi2[i] ? x[i] : hi2[i];
+    }
+    const double coef[3] = {pc->A, pc->B, pc->C};
+    double dmin = 0.0, dmax = 0.0;
+    for (int i = 0; i < 3; i++) {
+        double l = coef[i] * (lo[i] - hi2[i]), h = coef[i] * (hi[i] - lo2[i]);
+        dmin += fmin(l, h);
+        dmax += fmax(l, h);
+    }
+    const double far = pc->sp->d_far * (1.0 + 1e-9);
+    return dmin > far || dmax < -far;
 }
 
-static void slot_sums_apply(const slot_sums *ss, const phase_cache *pc, int nf, double out[][3])
+/* Band integrals of the pair sums per component: out[c][j] = sum_{a,b} S_j(v_a[c] conj(v_b[c])
+ * e^{ik(Phi_a - conj Phi_b)}). Groups must be sorted by order m. */
+static void pair_sums(phase_cache *pc, const path_group *g, int G, const double complex (*v)[MAX_COMP], int L,
+                      int evanescent, double out[][3])
 {
-    for (int t = 0; t < ss->n; t++) {
-        int h = ss->list[t];
-        for (int k = 0; k < nf; k++) {
-            double re = 2.0 * creal(ss->acc[h][k]), im = 2.0 * cimag(ss->acc[h][k]);
-            for (int j = 0; j < 3; j++) out[k][j] += re * pc->c[h][j] - im * pc->s[h][j];
+    const double *kc = pc->sp->k_centroid;
+    for (int c = 0; c < L; c++) out[c][0] = out[c][1] = out[c][2] = 0.0;
+    for (int a = 0; a < G; a++) {
+        double att[3] = {1.0, 1.0, 1.0};
+        double im = 2.0 * cimag(g[a].opl); /* decay of evanescent legs */
+        if (im != 0.0)
+            for (int j = 0; j < 3; j++) att[j] = exp(-kc[j] * im);
+        for (int c = 0; c < L; c++) {
+            double e = creal(v[a][c]) * creal(v[a][c]) + cimag(v[a][c]) * cimag(v[a][c]);
+            for (int j = 0; j < 3; j++) out[c][j] += att[j] * e;
+        }
+    }
+    if (evanescent) {
+        /* Rare (total internal reflection inside): every pair with its own decay. */
+        for (int a = 0; a < G; a++)
+            for (int b = a + 1; b < G; b++) {
+                double cc[3], ss[3], att[3];
+                biref_spectral_phase_integrals(pc->sp, lag_opd(pc, g[a].m - g[b].m, g[a].de - g[b].de, g[a].ue - g[b].ue),
+                                               cc, ss);
+                double im = cimag(g[a].opl) + cimag(g[b].opl);
+                for (int j = 0; j < 3; j++) att[j] = im != 0.0 ? exp(-kc[j] * im) : 1.0;
+                for (int c = 0; c < L; c++) {
+                    double complex p = v[a][c] * conj(v[b][c]);
+                    for (int j = 0; j < 3; j++) out[c][j] += 2.0 * att[j] * (creal(p) * cc[j] - cimag(p) * ss[j]);
+                }
+            }
+        return;
+    }
+    /* Blocks of equal order. */
+    int start[2 * EXP_MAX_ORDER + 4], nb = 0, maxde = 0, maxue = 0;
+    for (int a = 0; a < G; a++) {
+        if (a == 0 || g[a].m != g[a - 1].m) start[nb++] = a;
+        maxde = g[a].de > maxde ? g[a].de : maxde;
+        maxue = g[a].ue > maxue ? g[a].ue : maxue;
+    }
+    start[nb] = G;
+    pair_accumulator acc;
+    const int wu = 2 * maxue + 1, nlag0 = (2 * maxde + 1) * wu, center = maxde * wu + maxue;
+    memset(acc.lag0, 0, (size_t)nlag0 * sizeof acc.lag0[0]);
+    acc.n = 0;
+    int hash_touched = 0;
+    for (int p = 0; p < nb; p++) {
+        /* Same order: dense lag table. */
+        for (int a = start[p]; a < start[p + 1]; a++)
+            for (int b = a + 1; b < start[p + 1]; b++) {
+                double complex *t = acc.lag0[center + (g[a].de - g[b].de) * wu + (g[a].ue - g[b].ue)];
+                for (int c = 0; c < L; c++) t[c] += v[a][c] * conj(v[b][c]);
+            }
+        for (int q = p + 1; q < nb; q++) {
+            if (block_pair_vanishes(pc, g, start[p], start[p + 1], start[q], start[q + 1])) continue;
+            if (!hash_touched) {
+                memset(acc.used, 0, sizeof acc.used);
+                hash_touched = 1;
+            }
+            for (int a = start[p]; a < start[p + 1]; a++)
+                for (int b = start[q]; b < start[q + 1]; b++) {
+                    int dm = g[a].m - g[b].m, dde = g[a].de - g[b].de, due = g[a].ue - g[b].ue;
+                    int h = cache_slot(pc, dm, dde, due);
+                    if (h < 0) {
+                        double cc[3], ss[3];
+                        biref_spectral_phase_integrals(pc->sp, lag_opd(pc, dm, dde, due), cc, ss);
+                        for (int c = 0; c < L; c++) {
+                            double complex z = v[a][c] * conj(v[b][c]);
+                            for (int j = 0; j < 3; j++) out[c][j] += 2.0 * (creal(z) * cc[j] - cimag(z) * ss[j]);
+                        }
+                        continue;
+                    }
+                    if (!acc.used[h]) {
+                        acc.used[h] = 1;
+                        acc.list[acc.n++] = (short)h;
+                        for (int c = 0; c < L; c++) acc.hash[h][c] = 0.0;
+                    }
+                    for (int c = 0; c < L; c++) acc.hash[h][c] += v[a][c] * conj(v[b][c]);
+                }
+        }
+    }
+    /* Same-order lags l and -l share one band integral: S(e^{-ikD}) = conj S(e^{ikD}), so
+     * 2 Re(z S(-D)) = 2 Re(conj(z) S(D)). */
+    for (int i = center + 1; i < nlag0; i++) {
+        const double complex *t = acc.lag0[i], *u = acc.lag0[2 * center - i];
+        double complex z[MAX_COMP];
+        int any = 0;
+        for (int c = 0; c < L; c++) {
+            z[c] = t[c] + conj(u[c]);
+            any |= z[c] != 0.0;
+        }
+        if (!any) continue;
+        int dde = (i / wu) - maxde, due = (i % wu) - maxue;
+        double cc[3], ss[3];
+        biref_spectral_phase_integrals(pc->sp, lag_opd(pc, 0, dde, due), cc, ss);
+        for (int c = 0; c < L; c++)
+            for (int j = 0; j < 3; j++) out[c][j] += 2.0 * (creal(z[c]) * cc[j] - cimag(z[c]) * ss[j]);
+    }
+    for (int t = 0; t < acc.n; t++) {
+        int h = acc.list[t];
+        for (int c = 0; c < L; c++) {
+            double re = 2.0 * creal(acc.hash[h][c]), im = 2.0 * cimag(acc.hash[h][c]);
+            for (int j = 0; j < 3; j++) out[c][j] += re * pc->c[h][j] - im * pc->s[h][j];
         }
     }
 }
@@ -348,11 +466,10 @@ static void tail_energy(const tail_model *tm, int k, int skip, double out[3])
 
 /* max over bands of |S(e^{ikD}, Λ_j)|: how much of a coherent superposition at path difference D
  * survives the band integration. */
-static double band_coherence(phase_cache *pc, int dm, int dde, int due)
+static double band_coherence(const phase_cache *pc, int dm, int dde, int due)
 {
-    const double *c, *s;
-    cache_get(pc, dm, dde, due, &c, &s);
-    double m = 0.0;
+    double c[3], s[3], m = 0.0;
+    biref_spectral_phase_integrals(pc->sp, lag_opd(pc, dm, dde, due), c, s);
     for (int j = 0; j < 3; j++) m = fmax(m, sqrt(c[j] * c[j] + s[j] * s[j]));
     return m;
 }
@@ -363,7 +480,7 @@ static double band_coherence(phase_cache *pc, int dm, int dde, int due)
  * within an order, and (b) between dropped and kept paths, at most 2 sqrt(E_tail E_total) times
  * the coherence at the shortest round trip. For mm-thick slabs both coherences are ~1e-5 away
  * from the optic axis, so order 1 suffices; thin or near-axis slabs get more orders. */
-static int choose_order(phase_cache *pc, const biref_slab_state *st, const tail_model *tm, int which, int nf,
+static int choose_order(const phase_cache *pc, const biref_slab_state *st, const tail_model *tm, int which, int nf,
                         const biref_expansion_opts *o)
 {
     int lowest = which == BIREF_TRANSMISSION ? 0 : 1;
@@ -396,24 +513,62 @@ static int choose_order(phase_cache *pc, const biref_slab_state *st, const tail_
     return cap;
 }
 
-/* The phase integral of one group pair: S(cos), S(sin) of Re(D) and the evanescent decay. */
-static inline void pair_integrals(phase_cache *pc, const path_group *a, const path_group *b, double c[3],
-                                  double s[3], double att[3])
+/* Group vectors of one form: the coherency matrix C = sum_r l_r l_r^H (Cholesky) and the
+ * analyzer's Q = P P^H = sum_s w_s w_s^H, so that
+ *     c_gh = sum_ij C_ij (M_g Q M_h^H)_ij = sum_{r,s} (l_r^T M_g w_s) conj(l_r^T M_h w_s),
+ * an inner product of vectors with rank(C) rank(Q) <= 4 components. */
+/* A (Hermitian, positive semi-definite) = sum_r l_r l_r^H; returns the number of vectors. */
+static int cholesky2(const double complex A[2][2], double complex l[2][2])
 {
-    if (a == b) {
-        c[0] = c[1] = c[2] = 1.0;
-        s[0] = s[1] = s[2] = 0.0;
-    } else {
-        const double *cc, *ss;
-        cache_get(pc, a->m - b->m, a->de - b->de, a->ue - b->ue, &cc, &ss);
-        for (int j = 0; j < 3; j++) c[j] = cc[j], s[j] = ss[j];
+    double a = creal(A[0][0]), d = creal(A[1][1]);
+    int n = 0;
+    if (a > 0.0) {
+        double sa = sqrt(a);
+        l[n][0] = sa;
+        l[n][1] = conj(A[0][1]) / sa;
+        n++;
+        d -= (creal(A[0][1]) * creal(A[0][1]) + cimag(A[0][1]) * cimag(A[0][1])) / a;
     }
-    double im = cimag(a->opl) + cimag(b->opl); /* Im(Phi_a - conj Phi_b): decay of evanescent legs */
-    for (int j = 0; j < 3; j++) att[j] = im != 0.0 ? exp(-pc->sp->k_centroid[j] * im) : 1.0;
+    if (d > 0.0) {
+        l[n][0] = 0.0;
+        l[n][1] = sqrt(d);
+        n++;
+    }
+    return n;
+}
+
+static int form_vectors(const path_group *g, int G, const quad_form *f, double complex (*v)[MAX_COMP])
+{
+    double complex l[2][2], w[2][2], Q[2][2];
+    int nl = cholesky2(f->C, l), nw;
+    if (f->P) {
+        for (int i = 0; i < 2; i++)
+            for (int j = 0; j < 2; j++) Q[i][j] = f->P[i][0] * conj(f->P[j][0]) + f->P[i][1] * conj(f->P[j][1]);
+        nw = cholesky2(Q, w);
+    } else {
+        w[0][0] = 1.0, w[0][1] = 0.0, w[1][0] = 0.0, w[1][1] = 1.0;
+        nw = 2;
+    }
+    for (int a = 0; a < G; a++) {
+        int c = 0;
+        for (int r = 0; r < nl; r++) {
+            double complex row0 = l[r][0] * g[a].M[0][0] + l[r][1] * g[a].M[1][0];
+            double complex row1 = l[r][0] * g[a].M[0][1] + l[r][1] * g[a].M[1][1];
+            for (int s = 0; s < nw; s++) v[a][c++] = row0 * w[s][0] + row1 * w[s][1];
+        }
+    }
+    return nl * nw;
+}
+
+/* Path groups of the chosen order, degenerate legs merged. */
+static int groups_for(const biref_slab_state *st, int which, int order, path_group *g)
+{
+    int G = build_groups(st, which, order, g);
+    return legs_degenerate(st) ? merge_degenerate(g, G) : G;
 }
 
 /* Fast path for the four pure pairs (input i fully polarized, analyzer passing output o):
- * c_gh = M_g[i][o] conj(M_h[i][o]). */
+ * one component per form, v_g = M_g[i][o]. */
 static int expansion_pairs(const biref_spectral *sp, const biref_slab_state *st, int which, const quad_form *forms,
                            const biref_expansion_opts *opts, double out[4][3])
 {
@@ -423,41 +578,11 @@ static int expansion_pairs(const biref_spectral *sp, const biref_slab_state *st,
     cache_init(&pc, sp, st);
     int order = choose_order(&pc, st, &tm, which, 4, opts);
     path_group g[EXP_MAX_GROUPS];
-    int G = build_groups(st, which, order, g);
-    if (legs_degenerate(st)) G = merge_degenerate(g, G);
-    memset(out, 0, 4 * sizeof out[0]);
-    /* Diagonal terms: |M_g|^2 with the decay of evanescent legs. */
-    for (int a = 0; a < G; a++) {
-        double c[3], s[3], att[3];
-        pair_integrals(&pc, &g[a], &g[a], c, s, att);
-        for (int k = 0; k < 4; k++) {
-            double complex v = g[a].M[k >> 1][k & 1];
-            double e = creal(v) * creal(v) + cimag(v) * cimag(v);
-            for (int j = 0; j < 3; j++) out[k][j] += att[j] * e;
-        }
-    }
-    /* Cross terms 2 Re(M_a conj(M_b) S(e^{ik(Phi_a - Phi_b)})). Without evanescent legs (the
-     * common case) there is no decay to apply and the loop is pure multiply-adds. */
-    const int evanescent = st->total_reflection;
-    slot_sums ss;
-    ss.n = 0;
-    memset(ss.used, 0, sizeof ss.used);
+    int G = groups_for(st, which, order, g);
+    double complex v[EXP_MAX_GROUPS][MAX_COMP];
     for (int a = 0; a < G; a++)
-        for (int b = a + 1; b < G; b++) {
-            int h = evanescent ? -1 : cache_slot(&pc, g[a].m - g[b].m, g[a].de - g[b].de, g[a].ue - g[b].ue);
-            if (h >= 0) {
-                double complex *acc = slot_acc(&ss, h, 4);
-                for (int k = 0; k < 4; k++) acc[k] += g[a].M[k >> 1][k & 1] * conj(g[b].M[k >> 1][k & 1]);
-                continue;
-            }
-            double c[3], s[3], att[3];
-            pair_integrals(&pc, &g[a], &g[b], c, s, att);
-            for (int k = 0; k < 4; k++) {
-                double complex v = g[a].M[k >> 1][k & 1] * conj(g[b].M[k >> 1][k & 1]);
-                for (int j = 0; j < 3; j++) out[k][j] += 2.0 * att[j] * (creal(v) * c[j] - cimag(v) * s[j]);
-            }
-        }
-    slot_sums_apply(&ss, &pc, 4, out);
+        for (int k = 0; k < 4; k++) v[a][k] = g[a].M[k >> 1][k & 1];
+    pair_sums(&pc, g, G, (const double complex(*)[MAX_COMP])v, 4, st->total_reflection, out);
     int lowest = which == BIREF_TRANSMISSION ? 0 : 1;
     for (int k = 0; k < 4; k++) {
         double tail[3];
@@ -467,60 +592,25 @@ static int expansion_pairs(const biref_spectral *sp, const biref_slab_state *st,
     return order;
 }
 
-/* Accumulates the detected intensity of nf quadratic forms over all group pairs. */
-static int expansion_core(const biref_spectral *sp, const biref_slab_state *st, int which, const quad_form *forms,
-                          int nf, const biref_expansion_opts *opts, double out[][3])
+/* The detected intensity of one general form (any coherency matrix and analyzer). */
+static int expansion_core(const biref_spectral *sp, const biref_slab_state *st, int which, const quad_form *form,
+                          const biref_expansion_opts *opts, double out[3])
 {
     tail_model tm;
-    tail_setup(sp, st, which, forms, nf, &tm);
+    tail_setup(sp, st, which, form, 1, &tm);
     phase_cache pc;
     cache_init(&pc, sp, st);
-    int order = choose_order(&pc, st, &tm, which, nf, opts);
+    int order = choose_order(&pc, st, &tm, which, 1, opts);
     path_group g[EXP_MAX_GROUPS];
-    int G = build_groups(st, which, order, g);
-    if (legs_degenerate(st)) G = merge_degenerate(g, G);
-    /* N[k][g] = M_g P_k, c_gh = sum C_ij N_g[i][o] conj(N_h[j][o]). */
-    double complex N[EXP_MAX_FORMS][EXP_MAX_GROUPS][2][2];
-    for (int k = 0; k < nf; k++)
-        for (int a = 0; a < G; a++)
-            for (int i = 0; i < 2; i++)
-                for (int o = 0; o < 2; o++)
-                    N[k][a][i][o] = forms[k].P ? g[a].M[i][0] * forms[k].P[0][o] + g[a].M[i][1] * forms[k].P[1][o]
-                                               : g[a].M[i][o];
-    for (int k = 0; k < nf; k++) out[k][0] = out[k][1] = out[k][2] = 0.0;
-    const int evanescent = st->total_reflection;
-    slot_sums ss;
-    ss.n = 0;
-    memset(ss.used, 0, sizeof ss.used);
-    for (int a = 0; a < G; a++) {
-        for (int b = a; b < G; b++) {
-            int h = (evanescent || a == b) ? -1 : cache_slot(&pc, g[a].m - g[b].m, g[a].de - g[b].de, g[a].ue - g[b].ue);
-            double c[3] = {0, 0, 0}, s[3] = {0, 0, 0}, att[3] = {1, 1, 1};
-            if (h < 0) pair_integrals(&pc, &g[a], &g[b], c, s, att);
-            double complex *acc = h >= 0 ? slot_acc(&ss, h, nf) : NULL;
-            double mult = b == a ? 1.0 : 2.0;
-            for (int k = 0; k < nf; k++) {
-                double complex cg = 0.0;
-                const double complex(*C)[2] = forms[k].C;
-                for (int i = 0; i < 2; i++)
-                    for (int jj = 0; jj < 2; jj++) {
-                        if (C[i][jj] == 0.0) continue;
-                        cg += C[i][jj] * (N[k][a][i][0] * conj(N[k][b][jj][0]) + N[k][a][i][1] * conj(N[k][b][jj][1]));
-                    }
-                if (acc)
-                    acc[k] += cg;
-                else
-                    for (int j = 0; j < 3; j++) out[k][j] += mult * att[j] * (creal(cg) * c[j] - cimag(cg) * s[j]);
-            }
-        }
-    }
-    slot_sums_apply(&ss, &pc, nf, out);
+    int G = groups_for(st, which, order, g);
+    double complex v[EXP_MAX_GROUPS][MAX_COMP];
+    int L = form_vectors(g, G, form, v);
+    double comp[MAX_COMP][3];
+    pair_sums(&pc, g, G, (const double complex(*)[MAX_COMP])v, L, st->total_reflection, comp);
     int lowest = which == BIREF_TRANSMISSION ? 0 : 1;
-    for (int k = 0; k < nf; k++) {
-        double tail[3];
-        tail_energy(&tm, k, order + 1 - lowest, tail);
-        for (int j = 0; j < 3; j++) out[k][j] += tail[j];
-    }
+    tail_energy(&tm, 0, order + 1 - lowest, out);
+    for (int c = 0; c < L; c++)
+        for (int j = 0; j < 3; j++) out[j] += comp[c][j];
     return order;
 }
 
@@ -546,9 +636,7 @@ biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const 
     }
     if (!(opts->tolerance > 0.0) && opts->order < 0) return BIREF_ERR_INVALID;
     quad_form f = {C, P};
-    double out[1][3];
-    int order = expansion_core(sp, st, which, &f, 1, opts, out);
-    memcpy(xyz, out[0], sizeof out[0]);
+    int order = expansion_core(sp, st, which, &f, opts, xyz);
     if (order_used) *order_used = order;
     return BIREF_OK;
 }

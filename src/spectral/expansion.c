@@ -44,6 +44,10 @@ typedef struct {
     int key[CACHE_SLOTS];
     int fill;
     double c[CACHE_SLOTS][3], s[CACHE_SLOTS][3];
+    /* Same-order lags with |dde|, |due| <= 1: asked for by the order choice and again by the
+     * pair sums (at order 1 they are all the lags there are). */
+    unsigned char near_have[3][3];
+    double near_c[3][3][3], near_s[3][3][3];
 } phase_cache;
 
 static void cache_init(phase_cache *pc, const biref_spectral *sp, const biref_slab_state *st)
@@ -53,11 +57,28 @@ static void cache_init(phase_cache *pc, const biref_spectral *sp, const biref_sl
     pc->B = creal(st->opl_down[1] - st->opl_down[0]);
     pc->C = creal(st->opl_up[1] - st->opl_up[0]);
     pc->hash_ready = 0;
+    memset(pc->near_have, 0, sizeof pc->near_have);
 }
 
 static inline double lag_opd(const phase_cache *pc, int dm, int dde, int due)
 {
     return dm * pc->A + dde * pc->B + due * pc->C;
+}
+
+/* S(cos), S(sin) of the same-order lag (dde, due). */
+static void lag0_integrals(phase_cache *pc, int dde, int due, double c[3], double s[3])
+{
+    if (dde < -1 || dde > 1 || due < -1 || due > 1) {
+        biref_spectral_phase_integrals(pc->sp, lag_opd(pc, 0, dde, due), c, s);
+        return;
+    }
+    if (!pc->near_have[dde + 1][due + 1]) {
+        biref_spectral_phase_integrals(pc->sp, lag_opd(pc, 0, dde, due), pc->near_c[dde + 1][due + 1],
+                                       pc->near_s[dde + 1][due + 1]);
+        pc->near_have[dde + 1][due + 1] = 1;
+    }
+    memcpy(c, pc->near_c[dde + 1][due + 1], 3 * sizeof *c);
+    memcpy(s, pc->near_s[dde + 1][due + 1], 3 * sizeof *s);
 }
 
 /* Hash slot of the lag (dm, dde, due), its S(cos), S(sin) computed on first use; -1 once the
@@ -224,7 +245,7 @@ static void pair_sums(phase_cache *pc, const path_group *g, int G, const double 
         if (!any) continue;
         int dde = (i / wu) - maxde, due = (i % wu) - maxue;
         double cc[3], ss[3];
-        biref_spectral_phase_integrals(pc->sp, lag_opd(pc, 0, dde, due), cc, ss);
+        lag0_integrals(pc, dde, due, cc, ss);
         for (int c = 0; c < L; c++)
             for (int j = 0; j < 3; j++) out[c][j] += 2.0 * (creal(z[c]) * cc[j] - cimag(z[c]) * ss[j]);
     }
@@ -466,10 +487,13 @@ static void tail_energy(const tail_model *tm, int k, int skip, double out[3])
 
 /* max over bands of |S(e^{ikD}, Λ_j)|: how much of a coherent superposition at path difference D
  * survives the band integration. */
-static double band_coherence(const phase_cache *pc, int dm, int dde, int due)
+static double band_coherence(phase_cache *pc, int dm, int dde, int due)
 {
     double c[3], s[3], m = 0.0;
-    biref_spectral_phase_integrals(pc->sp, lag_opd(pc, dm, dde, due), c, s);
+    if (dm == 0)
+        lag0_integrals(pc, dde, due, c, s);
+    else
+        biref_spectral_phase_integrals(pc->sp, lag_opd(pc, dm, dde, due), c, s);
     for (int j = 0; j < 3; j++) m = fmax(m, sqrt(c[j] * c[j] + s[j] * s[j]));
     return m;
 }
@@ -480,7 +504,7 @@ static double band_coherence(const phase_cache *pc, int dm, int dde, int due)
  * within an order, and (b) between dropped and kept paths, at most 2 sqrt(E_tail E_total) times
  * the coherence at the shortest round trip. For mm-thick slabs both coherences are ~1e-5 away
  * from the optic axis, so order 1 suffices; thin or near-axis slabs get more orders. */
-static int choose_order(const phase_cache *pc, const biref_slab_state *st, const tail_model *tm, int which, int nf,
+static int choose_order(phase_cache *pc, const biref_slab_state *st, const tail_model *tm, int which, int nf,
                         const biref_expansion_opts *o)
 {
     int lowest = which == BIREF_TRANSMISSION ? 0 : 1;

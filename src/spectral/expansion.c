@@ -123,61 +123,61 @@ typedef struct {
     int n;
 } pair_accumulator;
 
-/* Whether every pair between the groups [a0, a1) and [b0, b1) (different orders) has a real
- * path difference beyond the look-up table's far limit, where the band integrals are exactly
- * zero: the difference is linear in the integer lags, so its range over the box of lags is
- * spanned by the box's corners. For mm-thick slabs a round trip is far beyond it, and every
- * cross-order block is skipped; the pair count then falls from ~G^2/2 to ~sum_m G_m^2/2. */
-static int block_pair_vanishes(const phase_cache *pc, const path_group *g, int a0, int a1, int b0, int b1)
+/* The box of integer coordinates (m, de, ue) spanned by one block of equal order. */
+typedef struct {
+    int lo[3], hi[3];
+} lag_box;
+
+static inline double dmin2(double a, double b) { return a < b ? a : b; }
+static inline double dmax2(double a, double b) { return a > b ? a : b; }
+
+/* Whether every pair between two blocks of different orders has a real path difference beyond
+ * the look-up table's far limit, where the band integrals are exactly zero: the difference is
+ * linear in the integer lags, so its range over the box of lags is spanned by the box's
+ * corners. For mm-thick slabs a round trip is far beyond it and every cross-order block is
+ * skipped; the pair count then falls from ~G^2/2 to ~sum_m G_m^2/2. */
+static int block_pair_vanishes(const phase_cache *pc, const lag_box *p, const lag_box *q)
 {
-    int lo[3] = {1 << 20, 1 << 20, 1 << 20}, hi[3] = {-(1 << 20), -(1 << 20), -(1 << 20)};
-    int lo2[3] = {1 << 20, 1 << 20, 1 << 20}, hi2[3] = {-(1 << 20), -(1 << 20), -(1 << 20)};
-    for (int a = a0; a < a1; a++) {
-        int x[3] = {g[a].m, g[a].de, g[a].ue};
-        for (int i = 0; i < 3; i++) lo[i] = x[i] < lo[i] ? x[i] : lo[i], hi[i] = x[i] > hi[i] ? x[i] : hi[i];
-    }
-    for (int b = b0; b < b1; b++) {
-        int x[3] = {g[b].m, g[b].de, g[b].ue};
-        for (int i = 0; i < 3; i++) lo2[i] = x[i] < lo2[i] ? x[i] : lo2[i], hi2[i] = x[i] > hi2[i] ? x[i] : hi2[i];
-    }
     const double coef[3] = {pc->A, pc->B, pc->C};
     double dmin = 0.0, dmax = 0.0;
     for (int i = 0; i < 3; i++) {
-        double l = coef[i] * (lo[i] - hi2[i]), h = coef[i] * (hi[i] - lo2[i]);
-        dmin += fmin(l, h);
-        dmax += fmax(l, h);
+        double l = coef[i] * (p->lo[i] - q->hi[i]), h = coef[i] * (p->hi[i] - q->lo[i]);
+        dmin += dmin2(l, h);
+        dmax += dmax2(l, h);
     }
     const double far = pc->sp->d_far * (1.0 + 1e-9);
     return dmin > far || dmax < -far;
 }
 
 /* Band integrals of the pair sums per component: out[c][j] = sum_{a,b} S_j(v_a[c] conj(v_b[c])
- * e^{ik(Phi_a - conj Phi_b)}). Groups must be sorted by order m. */
-static void pair_sums(phase_cache *pc, const path_group *g, int G, const double complex (*v)[MAX_COMP], int L,
+ * e^{ik(Phi_a - conj Phi_b)}) over the pairs among the first Gp groups, plus the own intensity
+ * of all G groups. Groups must be sorted by order m. Always MAX_COMP components (unused ones
+ * zero): fixed trip counts let the compiler unroll the inner loops. */
+static void pair_sums(phase_cache *pc, const path_group *g, int G, int Gp, const double complex (*v)[MAX_COMP],
                       int evanescent, double out[][3])
 {
     const double *kc = pc->sp->k_centroid;
-    for (int c = 0; c < L; c++) out[c][0] = out[c][1] = out[c][2] = 0.0;
+    for (int c = 0; c < MAX_COMP; c++) out[c][0] = out[c][1] = out[c][2] = 0.0;
     for (int a = 0; a < G; a++) {
         double att[3] = {1.0, 1.0, 1.0};
         double im = 2.0 * cimag(g[a].opl); /* decay of evanescent legs */
         if (im != 0.0)
             for (int j = 0; j < 3; j++) att[j] = exp(-kc[j] * im);
-        for (int c = 0; c < L; c++) {
+        for (int c = 0; c < MAX_COMP; c++) {
             double e = creal(v[a][c]) * creal(v[a][c]) + cimag(v[a][c]) * cimag(v[a][c]);
             for (int j = 0; j < 3; j++) out[c][j] += att[j] * e;
         }
     }
     if (evanescent) {
         /* Rare (total internal reflection inside): every pair with its own decay. */
-        for (int a = 0; a < G; a++)
-            for (int b = a + 1; b < G; b++) {
+        for (int a = 0; a < Gp; a++)
+            for (int b = a + 1; b < Gp; b++) {
                 double cc[3], ss[3], att[3];
                 biref_spectral_phase_integrals(pc->sp, lag_opd(pc, g[a].m - g[b].m, g[a].de - g[b].de, g[a].ue - g[b].ue),
                                                cc, ss);
                 double im = cimag(g[a].opl) + cimag(g[b].opl);
                 for (int j = 0; j < 3; j++) att[j] = im != 0.0 ? exp(-kc[j] * im) : 1.0;
-                for (int c = 0; c < L; c++) {
+                for (int c = 0; c < MAX_COMP; c++) {
                     double complex p = v[a][c] * conj(v[b][c]);
                     for (int j = 0; j < 3; j++) out[c][j] += 2.0 * att[j] * (creal(p) * cc[j] - cimag(p) * ss[j]);
                 }
@@ -185,13 +185,24 @@ static void pair_sums(phase_cache *pc, const path_group *g, int G, const double 
         return;
     }
     /* Blocks of equal order. */
-    int start[2 * EXP_MAX_ORDER + 4], nb = 0, maxde = 0, maxue = 0;
-    for (int a = 0; a < G; a++) {
-        if (a == 0 || g[a].m != g[a - 1].m) start[nb++] = a;
+    int start[EXP_MAX_ORDER + 2], nb = 0, maxde = 0, maxue = 0;
+    lag_box box[EXP_MAX_ORDER + 1];
+    for (int a = 0; a < Gp; a++) {
+        const int x[3] = {g[a].m, g[a].de, g[a].ue};
+        if (a == 0 || g[a].m != g[a - 1].m) {
+            start[nb] = a;
+            for (int i = 0; i < 3; i++) box[nb].lo[i] = box[nb].hi[i] = x[i];
+            nb++;
+        }
+        for (int i = 0; i < 3; i++) {
+            lag_box *bx = &box[nb - 1];
+            bx->lo[i] = x[i] < bx->lo[i] ? x[i] : bx->lo[i];
+            bx->hi[i] = x[i] > bx->hi[i] ? x[i] : bx->hi[i];
+        }
         maxde = g[a].de > maxde ? g[a].de : maxde;
         maxue = g[a].ue > maxue ? g[a].ue : maxue;
     }
-    start[nb] = G;
+    start[nb] = Gp;
     pair_accumulator acc;
     const int wu = 2 * maxue + 1, nlag0 = (2 * maxde + 1) * wu, center = maxde * wu + maxue;
     memset(acc.lag0, 0, (size_t)nlag0 * sizeof acc.lag0[0]);
@@ -202,10 +213,10 @@ static void pair_sums(phase_cache *pc, const path_group *g, int G, const double 
         for (int a = start[p]; a < start[p + 1]; a++)
             for (int b = a + 1; b < start[p + 1]; b++) {
                 double complex *t = acc.lag0[center + (g[a].de - g[b].de) * wu + (g[a].ue - g[b].ue)];
-                for (int c = 0; c < L; c++) t[c] += v[a][c] * conj(v[b][c]);
+                for (int c = 0; c < MAX_COMP; c++) t[c] += v[a][c] * conj(v[b][c]);
             }
         for (int q = p + 1; q < nb; q++) {
-            if (block_pair_vanishes(pc, g, start[p], start[p + 1], start[q], start[q + 1])) continue;
+            if (block_pair_vanishes(pc, &box[p], &box[q])) continue;
             if (!hash_touched) {
                 memset(acc.used, 0, sizeof acc.used);
                 hash_touched = 1;
@@ -217,7 +228,7 @@ static void pair_sums(phase_cache *pc, const path_group *g, int G, const double 
                     if (h < 0) {
                         double cc[3], ss[3];
                         biref_spectral_phase_integrals(pc->sp, lag_opd(pc, dm, dde, due), cc, ss);
-                        for (int c = 0; c < L; c++) {
+                        for (int c = 0; c < MAX_COMP; c++) {
                             double complex z = v[a][c] * conj(v[b][c]);
                             for (int j = 0; j < 3; j++) out[c][j] += 2.0 * (creal(z) * cc[j] - cimag(z) * ss[j]);
                         }
@@ -226,9 +237,9 @@ static void pair_sums(phase_cache *pc, const path_group *g, int G, const double 
                     if (!acc.used[h]) {
                         acc.used[h] = 1;
                         acc.list[acc.n++] = (short)h;
-                        for (int c = 0; c < L; c++) acc.hash[h][c] = 0.0;
+                        for (int c = 0; c < MAX_COMP; c++) acc.hash[h][c] = 0.0;
                     }
-                    for (int c = 0; c < L; c++) acc.hash[h][c] += v[a][c] * conj(v[b][c]);
+                    for (int c = 0; c < MAX_COMP; c++) acc.hash[h][c] += v[a][c] * conj(v[b][c]);
                 }
         }
     }
@@ -238,7 +249,7 @@ static void pair_sums(phase_cache *pc, const path_group *g, int G, const double 
         const double complex *t = acc.lag0[i], *u = acc.lag0[2 * center - i];
         double complex z[MAX_COMP];
         int any = 0;
-        for (int c = 0; c < L; c++) {
+        for (int c = 0; c < MAX_COMP; c++) {
             z[c] = t[c] + conj(u[c]);
             any |= z[c] != 0.0;
         }
@@ -246,12 +257,12 @@ static void pair_sums(phase_cache *pc, const path_group *g, int G, const double 
         int dde = (i / wu) - maxde, due = (i % wu) - maxue;
         double cc[3], ss[3];
         lag0_integrals(pc, dde, due, cc, ss);
-        for (int c = 0; c < L; c++)
+        for (int c = 0; c < MAX_COMP; c++)
             for (int j = 0; j < 3; j++) out[c][j] += 2.0 * (creal(z[c]) * cc[j] - cimag(z[c]) * ss[j]);
     }
     for (int t = 0; t < acc.n; t++) {
         int h = acc.list[t];
-        for (int c = 0; c < L; c++) {
+        for (int c = 0; c < MAX_COMP; c++) {
             double re = 2.0 * creal(acc.hash[h][c]), im = 2.0 * cimag(acc.hash[h][c]);
             for (int j = 0; j < 3; j++) out[c][j] += re * pc->c[h][j] - im * pc->s[h][j];
         }
@@ -336,22 +347,25 @@ static int merge_degenerate(path_group *g, int G)
 
 /* Group amplitudes by dynamic programming over legs: state = (e legs down, e legs up, current
  * mode), value = row vector over the two inputs. Returns the number of groups. */
+typedef double complex dp_layer[EXP_MAX_ORDER + 2][EXP_MAX_ORDER + 2][2][2]; /* [de][ue][mode][input] */
+
 static int build_groups(const biref_slab_state *st, int which, int order, path_group *g)
 {
     const double complex(*t01)[2] = st->top.t_down, (*r10)[2] = st->top.r_up, (*t10)[2] = st->top.t_up;
     const double complex(*r12)[2] = st->bottom.r_down, (*t12)[2] = st->bottom.t_down;
     const double complex *od = st->opl_down, *ou = st->opl_up;
-    /* amp[de][ue][mode][input]; only the reachable corner [0..order+1][0..order+1] is used and
-     * zeroed (the full arrays are 13 KB; per-sample cost matters at order 1). */
-    double complex cur[EXP_MAX_ORDER + 2][EXP_MAX_ORDER + 2][2][2], nxt[EXP_MAX_ORDER + 2][EXP_MAX_ORDER + 2][2][2];
+    /* Two layers used in turn; only the reachable corner [0..order+1][0..order+1] is zeroed
+     * (the full arrays are 13 KB; per-sample cost matters at order 1). */
+    dp_layer layer[2];
+    dp_layer *cur = &layer[0], *nxt = &layer[1];
     const int span = order + 2;
-    for (int a = 0; a < span; a++) memset(cur[a], 0, (size_t)span * sizeof cur[a][0]);
+    for (int a = 0; a < span; a++) memset((*cur)[a], 0, (size_t)span * sizeof (*cur)[a][0]);
     int n = 0;
     const double complex(*exit)[2] = which == BIREF_REFLECTION ? t10 : t12;
     int m0;
     if (which == BIREF_TRANSMISSION) {
         for (int x = 0; x < 2; x++)
-            for (int i = 0; i < 2; i++) cur[x][0][x][i] = t01[i][x];
+            for (int i = 0; i < 2; i++) (*cur)[x][0][x][i] = t01[i][x];
         m0 = 0;
     } else {
         memcpy(g[n].M, st->top.r_down, sizeof g[n].M);
@@ -359,42 +373,56 @@ static int build_groups(const biref_slab_state *st, int which, int order, path_g
         g[n++].opl = 0.0;
         for (int x = 0; x < 2; x++)
             for (int y = 0; y < 2; y++)
-                for (int i = 0; i < 2; i++) cur[x][y][y][i] += t01[i][x] * r12[x][y];
+                for (int i = 0; i < 2; i++) (*cur)[x][y][y][i] += t01[i][x] * r12[x][y];
         m0 = 1;
     }
+    /* One more round trip: transmission reflects at the bottom (a -> b), goes up, reflects at
+     * the top (b -> c), goes down; reflection the other way round. */
+    const double complex(*ra)[2] = which == BIREF_TRANSMISSION ? r12 : r10;
+    const double complex(*rb)[2] = which == BIREF_TRANSMISSION ? r10 : r12;
+    double complex F[2][2][2];
+    for (int a = 0; a < 2; a++)
+        for (int b = 0; b < 2; b++)
+            for (int c = 0; c < 2; c++) F[a][b][c] = ra[a][b] * rb[b][c];
     for (int m = m0; m <= order; m++) {
         /* Legs so far: transmission m+1 down, m up; reflection m down, m up. */
         int n_down = which == BIREF_TRANSMISSION ? m + 1 : m, n_up = m;
         for (int de = 0; de <= n_down; de++)
             for (int ue = 0; ue <= n_up; ue++) {
                 path_group *p = &g[n++];
+                const double complex(*v)[2] = (*cur)[de][ue];
                 for (int i = 0; i < 2; i++)
-                    for (int o = 0; o < 2; o++) p->M[i][o] = cur[de][ue][0][i] * exit[0][o] + cur[de][ue][1][i] * exit[1][o];
-                p->opl = (n_down - de) * od[0] + de * od[1] + (n_up - ue) * ou[0] + ue * ou[1];
-                /* Transmission's extra down leg is common to all groups and cancels in differences. */
+                    for (int o = 0; o < 2; o++) p->M[i][o] = v[0][i] * exit[0][o] + v[1][i] * exit[1][o];
+                /* Only the decay of evanescent legs needs it: lags come from the integer coordinates.
+                 * Transmission's extra down leg is common to all groups and cancels in differences. */
+                p->opl = st->total_reflection ? (n_down - de) * od[0] + de * od[1] + (n_up - ue) * ou[0] + ue * ou[1] : 0.0;
                 p->m = m;
                 p->de = de;
                 p->ue = ue;
             }
         if (m == order) break;
-        /* One more round trip: transmission reflects at the bottom (x -> y), goes up, reflects at
-         * the top (y -> x'), goes down; reflection the other way round. */
-        for (int a = 0; a < span; a++) memset(nxt[a], 0, (size_t)span * sizeof nxt[a][0]);
-        const double complex(*ra)[2] = which == BIREF_TRANSMISSION ? r12 : r10;
-        const double complex(*rb)[2] = which == BIREF_TRANSMISSION ? r10 : r12;
+        for (int a = 0; a < span; a++) memset((*nxt)[a], 0, (size_t)span * sizeof (*nxt)[a][0]);
         for (int de = 0; de <= n_down; de++)
-            for (int ue = 0; ue <= n_up; ue++)
-                for (int a = 0; a < 2; a++) {
-                    if (cur[de][ue][a][0] == 0.0 && cur[de][ue][a][1] == 0.0) continue;
-                    for (int b = 0; b < 2; b++)
-                        for (int c = 0; c < 2; c++) {
-                            double complex f = ra[a][b] * rb[b][c];
-                            /* transmission: b is the up leg, c the down leg; reflection: b down, c up */
-                            int dde = which == BIREF_TRANSMISSION ? c : b, due = which == BIREF_TRANSMISSION ? b : c;
-                            for (int i = 0; i < 2; i++) nxt[de + dde][ue + due][c][i] += cur[de][ue][a][i] * f;
-                        }
-                }
-        for (int a = 0; a < span; a++) memcpy(cur[a], nxt[a], (size_t)span * sizeof cur[a][0]);
+            for (int ue = 0; ue <= n_up; ue++) {
+                /* [mode a][input i] as re, im: both modes and inputs at once, in real arithmetic
+                 * (the hottest loop at high orders). */
+                const double *x = (const double *)(*cur)[de][ue];
+                for (int b = 0; b < 2; b++)
+                    for (int c = 0; c < 2; c++) {
+                        /* transmission: b is the up leg, c the down leg; reflection: b down, c up */
+                        int dde = which == BIREF_TRANSMISSION ? c : b, due = which == BIREF_TRANSMISSION ? b : c;
+                        double *y = (double *)(*nxt)[de + dde][ue + due][c];
+                        const double fr0 = creal(F[0][b][c]), fi0 = cimag(F[0][b][c]);
+                        const double fr1 = creal(F[1][b][c]), fi1 = cimag(F[1][b][c]);
+                        y[0] += x[0] * fr0 - x[1] * fi0 + x[4] * fr1 - x[5] * fi1;
+                        y[1] += x[0] * fi0 + x[1] * fr0 + x[4] * fi1 + x[5] * fr1;
+                        y[2] += x[2] * fr0 - x[3] * fi0 + x[6] * fr1 - x[7] * fi1;
+                        y[3] += x[2] * fi0 + x[3] * fr0 + x[6] * fi1 + x[7] * fr1;
+                    }
+            }
+        dp_layer *t = cur;
+        cur = nxt;
+        nxt = t;
     }
     return n;
 }
@@ -494,21 +522,37 @@ static double band_coherence(phase_cache *pc, int dm, int dde, int due)
         lag0_integrals(pc, dde, due, c, s);
     else
         biref_spectral_phase_integrals(pc->sp, lag_opd(pc, dm, dde, due), c, s);
-    for (int j = 0; j < 3; j++) m = fmax(m, sqrt(c[j] * c[j] + s[j] * s[j]));
-    return m;
+    for (int j = 0; j < 3; j++) m = dmax2(m, c[j] * c[j] + s[j] * s[j]);
+    return sqrt(m);
 }
 
-/* Smallest order whose truncation error is below tol (relative to the total energy). The energy
- * of the dropped orders is kept (incoherently), so what is lost is only interference: (a) among
- * the dropped paths, at most E_tail times the band coherence at the birefringent path differences
- * within an order, and (b) between dropped and kept paths, at most 2 sqrt(E_tail E_total) times
- * the coherence at the shortest round trip. For mm-thick slabs both coherences are ~1e-5 away
- * from the optic axis, so order 1 suffices; thin or near-axis slabs get more orders. */
-static int choose_order(phase_cache *pc, const biref_slab_state *st, const tail_model *tm, int which, int nf,
-                        const biref_expansion_opts *o)
+/* The two orders of the expansion: every pair of groups up to order `pairs` interferes; the
+ * groups of orders pairs+1 .. `groups` add their own intensity |M_g|^2 (exact at lag 0: the
+ * paths inside a group share one optical path and are fully coherent with each other); paths
+ * beyond `groups` add their energy incoherently (closed form). */
+typedef struct {
+    int pairs, groups;
+} expansion_orders;
+
+/* Each order is the smallest whose truncation error is below tol (relative to the energy of
+ * the orders the expansion covers, per form and band):
+ *  - groups: the incoherent tail ignores the coherence inside the groups beyond the order, an
+ *    error of the order of E_tail;
+ *  - pairs: the interference left out beyond the order (a) among groups of one order, at most
+ *    ~E_tail times the band coherence at the birefringent lags within an order, and (b) between
+ *    orders, at most 2 sqrt(E_tail E_total) times the coherence at the shortest round trip. For
+ *    mm-thick slabs both coherences are ~1e-5 away from the optic axis, so order 1 suffices;
+ *    thin or near-axis slabs get more orders.
+ * Measured on the fig. 9 sweep (docs/ACCURACY.md) rather than proven: (a) counts only the
+ * shortest lags. */
+static expansion_orders choose_orders(phase_cache *pc, const biref_slab_state *st, const tail_model *tm, int which,
+                                      int nf, const biref_expansion_opts *o)
 {
     int lowest = which == BIREF_TRANSMISSION ? 0 : 1;
-    if (o->order >= 0) return o->order < lowest ? lowest : (o->order > EXP_MAX_ORDER ? EXP_MAX_ORDER : o->order);
+    if (o->order >= 0) {
+        int n = o->order < lowest ? lowest : (o->order > EXP_MAX_ORDER ? EXP_MAX_ORDER : o->order);
+        return (expansion_orders){n, n};
+    }
     int cap = o->max_order < 1 ? 1 : (o->max_order > EXP_MAX_ORDER ? EXP_MAX_ORDER : o->max_order);
     const double complex *od = st->opl_down, *ou = st->opl_up;
     double d_rt = INFINITY;
@@ -517,24 +561,35 @@ static int choose_order(phase_cache *pc, const biref_slab_state *st, const tail_
         for (int y = 0; y < 2; y++)
             if (creal(od[x] + ou[y]) < d_rt) d_rt = creal(od[x] + ou[y]), rx = x, ry = y;
     double coh_cross = band_coherence(pc, 1, rx, ry);
-    /* Degenerate legs (B = C) make this 1: the tail's merged classes are exactly coherent, and the
-     * tail model adds their paths incoherently, so the bound must count them. */
-    double coh_intra = fmax(fmax(band_coherence(pc, 0, 1, 0), band_coherence(pc, 0, 0, 1)),
-                            fmax(band_coherence(pc, 0, 1, 1), band_coherence(pc, 0, 1, -1)));
-    for (int n = 1; n < cap; n++) {
-        int ok = 1;
-        for (int k = 0; k < nf && ok; k++) {
-            double total[3], tail[3];
-            tail_energy(tm, k, 0, total);
+    /* Degenerate legs (B = C) make this 1: merged groups differ by whole e legs, and the bound
+     * must count the interference between them. */
+    double coh_intra = dmax2(dmax2(band_coherence(pc, 0, 1, 0), band_coherence(pc, 0, 0, 1)),
+                             dmax2(band_coherence(pc, 0, 1, 1), band_coherence(pc, 0, 1, -1)));
+    double total[EXP_MAX_FORMS][3];
+    for (int k = 0; k < nf; k++) tail_energy(tm, k, 0, total[k]);
+    expansion_orders r = {cap, cap};
+    int have_pairs = 0, have_groups = 0;
+    for (int n = 1; n < cap && !(have_pairs && have_groups); n++) {
+        int ok_pairs = 1, ok_groups = 1;
+        for (int k = 0; k < nf; k++) {
+            double tail[3];
             tail_energy(tm, k, n + 1 - lowest, tail);
             for (int j = 0; j < 3; j++) {
-                double err = tail[j] * coh_intra + 2.0 * sqrt(tail[j] * total[j]) * coh_cross;
-                if (err > o->tolerance * total[j] + 1e-300) ok = 0;
+                double limit = o->tolerance * total[k][j] + 1e-300;
+                if (tail[j] * coh_intra + 2.0 * sqrt(tail[j] * total[k][j]) * coh_cross > limit) ok_pairs = 0;
+                if (tail[j] > limit) ok_groups = 0;
             }
         }
-        if (ok) return n;
+        if (ok_pairs && !have_pairs) r.pairs = n, have_pairs = 1;
+        if (ok_groups && !have_groups) r.groups = n, have_groups = 1;
     }
-    return cap;
+    /* At most two orders of own intensities beyond the interfering ones: they carry most of the
+     * tail (it falls by the round-trip reflectance per order), and the amplitude recursion costs
+     * ~ order^3 (fig. 9 sweep, 70-85 deg: worst relative error 0.11 with none, 0.035 with two,
+     * 0.008 without the limit at 1.7x the cost; docs/ACCURACY.md). */
+    if (r.groups > r.pairs + 2) r.groups = r.pairs + 2;
+    if (r.groups < r.pairs) r.groups = r.pairs;
+    return r;
 }
 
 /* Group vectors of one form: the coherency matrix C = sum_r l_r l_r^H (Cholesky) and the
@@ -561,7 +616,7 @@ static int cholesky2(const double complex A[2][2], double complex l[2][2])
     return n;
 }
 
-static int form_vectors(const path_group *g, int G, const quad_form *f, double complex (*v)[MAX_COMP])
+static void form_vectors(const path_group *g, int G, const quad_form *f, double complex (*v)[MAX_COMP])
 {
     double complex l[2][2], w[2][2], Q[2][2];
     int nl = cholesky2(f->C, l), nw;
@@ -580,8 +635,8 @@ static int form_vectors(const path_group *g, int G, const quad_form *f, double c
             double complex row1 = l[r][0] * g[a].M[0][1] + l[r][1] * g[a].M[1][1];
             for (int s = 0; s < nw; s++) v[a][c++] = row0 * w[s][0] + row1 * w[s][1];
         }
+        while (c < MAX_COMP) v[a][c++] = 0.0;
     }
-    return nl * nw;
 }
 
 /* Path groups of the chosen order, degenerate legs merged. */
@@ -591,29 +646,35 @@ static int groups_for(const biref_slab_state *st, int which, int order, path_gro
     return legs_degenerate(st) ? merge_degenerate(g, G) : G;
 }
 
+/* Number of leading groups of order <= n (groups are sorted by order). */
+static int groups_below(const path_group *g, int G, int n)
+{
+    int a = 0;
+    while (a < G && g[a].m <= n) a++;
+    return a;
+}
+
 /* Fast path for the four pure pairs (input i fully polarized, analyzer passing output o):
  * one component per form, v_g = M_g[i][o]. */
-static int expansion_pairs(const biref_spectral *sp, const biref_slab_state *st, int which, const quad_form *forms,
+static int expansion_pairs(phase_cache *pc, const biref_slab_state *st, int which, const quad_form *forms,
                            const biref_expansion_opts *opts, double out[4][3])
 {
     tail_model tm;
-    tail_setup(sp, st, which, forms, 4, &tm);
-    phase_cache pc;
-    cache_init(&pc, sp, st);
-    int order = choose_order(&pc, st, &tm, which, 4, opts);
+    tail_setup(pc->sp, st, which, forms, 4, &tm);
+    expansion_orders ord = choose_orders(pc, st, &tm, which, 4, opts);
     path_group g[EXP_MAX_GROUPS];
-    int G = groups_for(st, which, order, g);
+    int G = groups_for(st, which, ord.groups, g), Gp = groups_below(g, G, ord.pairs);
     double complex v[EXP_MAX_GROUPS][MAX_COMP];
     for (int a = 0; a < G; a++)
         for (int k = 0; k < 4; k++) v[a][k] = g[a].M[k >> 1][k & 1];
-    pair_sums(&pc, g, G, (const double complex(*)[MAX_COMP])v, 4, st->total_reflection, out);
+    pair_sums(pc, g, G, Gp, (const double complex(*)[MAX_COMP])v, st->total_reflection, out);
     int lowest = which == BIREF_TRANSMISSION ? 0 : 1;
     for (int k = 0; k < 4; k++) {
         double tail[3];
-        tail_energy(&tm, k, order + 1 - lowest, tail);
+        tail_energy(&tm, k, ord.groups + 1 - lowest, tail);
         for (int j = 0; j < 3; j++) out[k][j] += tail[j];
     }
-    return order;
+    return ord.pairs;
 }
 
 /* The detected intensity of one general form (any coherency matrix and analyzer). */
@@ -624,18 +685,18 @@ static int expansion_core(const biref_spectral *sp, const biref_slab_state *st, 
     tail_setup(sp, st, which, form, 1, &tm);
     phase_cache pc;
     cache_init(&pc, sp, st);
-    int order = choose_order(&pc, st, &tm, which, 1, opts);
+    expansion_orders ord = choose_orders(&pc, st, &tm, which, 1, opts);
     path_group g[EXP_MAX_GROUPS];
-    int G = groups_for(st, which, order, g);
+    int G = groups_for(st, which, ord.groups, g), Gp = groups_below(g, G, ord.pairs);
     double complex v[EXP_MAX_GROUPS][MAX_COMP];
-    int L = form_vectors(g, G, form, v);
+    form_vectors(g, G, form, v);
     double comp[MAX_COMP][3];
-    pair_sums(&pc, g, G, (const double complex(*)[MAX_COMP])v, L, st->total_reflection, comp);
+    pair_sums(&pc, g, G, Gp, (const double complex(*)[MAX_COMP])v, st->total_reflection, comp);
     int lowest = which == BIREF_TRANSMISSION ? 0 : 1;
-    tail_energy(&tm, 0, order + 1 - lowest, out);
-    for (int c = 0; c < L; c++)
+    tail_energy(&tm, 0, ord.groups + 1 - lowest, out);
+    for (int c = 0; c < MAX_COMP; c++)
         for (int j = 0; j < 3; j++) out[j] += comp[c][j];
-    return order;
+    return ord.pairs;
 }
 
 void biref_expansion_tail(const biref_spectral *sp, const biref_slab_state *st, int which, const double complex C[2][2],
@@ -681,9 +742,12 @@ biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab
     quad_form f[4];
     for (int i = 0; i < 2; i++)
         for (int o = 0; o < 2; o++) f[2 * i + o] = (quad_form){Cin[i], Pout[o]};
+    /* Transmission and reflection share the path differences, hence the band integrals. */
+    phase_cache pc;
+    cache_init(&pc, sp, st);
     for (int which = 0; which < 2; which++) {
         double res[4][3];
-        expansion_pairs(sp, st, which, f, opts, res);
+        expansion_pairs(&pc, st, which, f, opts, res);
         double(*X)[2][3] = which == BIREF_REFLECTION ? out->R : out->T;
         for (int i = 0; i < 2; i++)
             for (int o = 0; o < 2; o++) memcpy(X[i][o], res[2 * i + o], sizeof res[0]);

@@ -105,8 +105,9 @@ void biref_analyzer_circular(int handedness, double complex P[2][2]);
 #define BIREF_EXPANSION_MAX_ORDER 8
 
 typedef struct {
-    int order;        /* highest order summed coherently; -1: adaptive (default) */
-    double tolerance; /* adaptive: bound on the relative intensity error of truncation (1e-3) */
+    int order;        /* fixed: every pair up to this order interferes, the rest incoherent; -1:
+                         adaptive (default; docs/PHYSICS.md section 5) */
+    double tolerance; /* adaptive: target relative intensity error of truncation (1e-3) */
     int max_order;    /* adaptive cap (default and maximum 8) */
 } biref_expansion_opts;
 
@@ -114,9 +115,10 @@ void biref_expansion_opts_default(biref_expansion_opts *o);
 
 /* Exact spectral integral of the path-group expansion J(k) = sum_g M_g e^{ik Phi_g} (groups of
  * paths with equal optical path) up to the chosen order, every pair of groups interfering via
- * the S(cos), S(sin) table; orders beyond are added incoherently in closed form. Detected
- * intensity for incident coherency C and analyzer P (NULL = none), which = BIREF_TRANSMISSION
- * or BIREF_REFLECTION. *order_used may be NULL. No allocation. */
+ * the S(cos), S(sin) table; adaptive runs add the own intensity of up to two more orders' groups;
+ * paths beyond are added incoherently in closed form. Detected intensity for incident coherency
+ * C and analyzer P (NULL = none), which = BIREF_TRANSMISSION or BIREF_REFLECTION. *order_used
+ * (the pair order) may be NULL. No allocation. */
 biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
                                                 const double complex C[2][2], const double complex P[2][2],
                                                 const biref_expansion_opts *opts, double xyz[3], int *order_used);

@@ -441,6 +441,7 @@ typedef struct {
     double Dbar[3][2][2];
     double inv[3][2][2]; /* (I - Dbar)^{-1} */
     double first[EXP_MAX_FORMS][3][2]; /* energy arriving in each mode after the lowest order */
+    int bands; /* 3 with evanescent legs (their decay depends on the band), else 1: all bands equal */
 } tail_model;
 
 static void inv_one_minus(const double M[2][2], double out[2][2])
@@ -456,6 +457,7 @@ static void tail_setup(const biref_spectral *sp, const biref_slab_state *st, int
     const double complex(*r12)[2] = st->bottom.r_down, (*t12)[2] = st->bottom.t_down;
     const double complex(*exit)[2] = which == BIREF_REFLECTION ? t10 : t12;
     double ed[2][3], eu[2][3];
+    tm->bands = st->total_reflection ? 3 : 1;
     for (int m = 0; m < 2; m++)
         for (int j = 0; j < 3; j++) {
             double imd = cimag(st->opl_down[m]), imu = cimag(st->opl_up[m]);
@@ -477,7 +479,7 @@ static void tail_setup(const biref_spectral *sp, const biref_slab_state *st, int
             tm->out_q[k][x] = o2;
         }
     }
-    for (int j = 0; j < 3; j++) {
+    for (int j = 0; j < tm->bands; j++) {
         for (int a = 0; a < 2; a++)
             for (int c = 0; c < 2; c++) {
                 double e = 0.0;
@@ -500,7 +502,7 @@ static void tail_setup(const biref_spectral *sp, const biref_slab_state *st, int
 /* Energy of orders >= lowest + skip (incoherent), per form and band. */
 static void tail_energy(const tail_model *tm, int k, int skip, double out[3])
 {
-    for (int j = 0; j < 3; j++) {
+    for (int j = 0; j < tm->bands; j++) {
         double v[2] = {tm->first[k][j][0], tm->first[k][j][1]};
         for (int s = 0; s < skip; s++) {
             double w0 = v[0] * tm->Dbar[j][0][0] + v[1] * tm->Dbar[j][1][0];
@@ -511,6 +513,7 @@ static void tail_energy(const tail_model *tm, int k, int skip, double out[3])
         double u1 = v[0] * tm->inv[j][0][1] + v[1] * tm->inv[j][1][1];
         out[j] = u0 * tm->out_q[k][0] + u1 * tm->out_q[k][1];
     }
+    if (tm->bands == 1) out[1] = out[2] = out[0];
 }
 
 /* max over bands of |S(e^{ikD}, Λ_j)|: how much of a coherent superposition at path difference D

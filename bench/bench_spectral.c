@@ -11,9 +11,12 @@
  * beforehand (the integration alone). Ratios are taken within one run of one process, so they are
  * comparable; the paper's comparison is analytic vs numeric-8 (1.09 ms vs 1.73 ms per frame).
  *
+ *   expansion     biref_spectrum_expansion (beyond the paper, issue #5; default options)
+ *
  * Inputs: the paper's fig. 9 materials at random angles 0-70 deg (the analytic method's stated
- * domain) and random rotations of the optic axis about the surface normal y, generated before
- * timing from a fixed seed. Single thread; measures, never asserts. */
+ * domain; --theta-max-deg 85 for issue #5's range, where the expansion's cost rises) and random
+ * rotations of the optic axis about the surface normal y, generated before timing from a fixed
+ * seed. Single thread; measures, never asserts. */
 #include <complex.h>
 #include <math.h>
 #include <stdio.h>
@@ -24,7 +27,7 @@
 
 #include "bench_clock.h"
 
-enum { POOL = 256 }; /* power of two; prepared states ~350 KB stay in L2 */
+enum { POOL_DEFAULT = 256, POOL_MAX = 1 << 16 }; /* powers of two; 256 prepared states (~350 KB) stay in L2 */
 
 /* Fig. 9 (a), (b), (c): eta_o, eta_e, A, d. */
 static const struct {
@@ -38,8 +41,9 @@ static const struct {
 typedef enum { M_PREPARE, M_ANALYTIC, M_NUMERIC, M_EXPANSION } kind;
 
 typedef struct {
-    biref_slab slab[POOL];
-    double theta[POOL];
+    int pool; /* number of draws, a power of two */
+    biref_slab *slab;
+    double *theta;
     biref_slab_state *state;
     const biref_spectral *sp;
     const biref_numeric_plan *plan; /* for M_NUMERIC */
@@ -48,10 +52,10 @@ typedef struct {
     long failures;
 } ctx;
 
-static void make_pool(ctx *c, uint64_t seed)
+static void make_pool(ctx *c, uint64_t seed, double theta_max_deg)
 {
     bench_rng g = {seed};
-    for (int k = 0; k < POOL; k++) {
+    for (int k = 0; k < c->pool; k++) {
         int m = (int)(bench_rng_next(&g) % 3);
         double phi = bench_rng_uniform(&g, 0.0, 2.0 * M_PI), cp = cos(phi), sp = sin(phi);
         const double *A = FIG9[m].axis;
@@ -64,7 +68,7 @@ static void make_pool(ctx *c, uint64_t seed)
         s->axis[2] = -sp * A[0] + cp * A[2];
         s->thickness_nm = FIG9[m].d_nm;
         s->eta_i = 1.0;
-        c->theta[k] = bench_rng_uniform(&g, 0.0, 70.0 * M_PI / 180.0);
+        c->theta[k] = bench_rng_uniform(&g, 0.0, theta_max_deg * M_PI / 180.0);
     }
 }
 
@@ -75,7 +79,7 @@ static double run(void *vctx, long iters)
     ctx *c = vctx;
     double acc = 0.0;
     for (long i = 0; i < iters; i++) {
-        size_t k = (size_t)i & (POOL - 1);
+        size_t k = (size_t)i & (size_t)(c->pool - 1);
         biref_slab_state local;
         const biref_slab_state *st = &c->state[k];
         if (c->with_prepare) {
@@ -109,13 +113,16 @@ static void usage(FILE *f)
 {
     fprintf(f,
             "usage: bench_spectral [--min-time S] [--runs N] [--iterations N] [--seed N] [--no-ground-truth]\n"
-            "                      [--method NAME] [--json]\n"
+            "                      [--theta-max-deg A] [--draws N] [--method NAME] [--json]\n"
             "  --min-time S        seconds per timed run after calibration (default 0.5)\n"
             "  --runs N            timed runs per method; the median is reported (default 5;\n"
             "                      ground truth uses min(N, 3))\n"
             "  --iterations N      fixed samples per run, no calibration (default runs 1; for\n"
             "                      valgrind --tool=callgrind, whose counts do not depend on load)\n"
             "  --seed N            seed of the random angles and axis rotations (default 1)\n"
+            "  --theta-max-deg A   angles uniform in 0-A deg, 0 < A < 90 (default 70; issue #5: 85)\n"
+            "  --draws N           random slab states cycled through, a power of two <= 65536\n"
+            "                      (default 256; more for a steadier mean when the cost varies)\n"
             "  --no-ground-truth   skip the 16384-sample reference (about 10 s)\n"
             "  --method NAME       only prepare, analytic and NAME (numeric-8, ground-truth, ...),\n"
             "                      e.g. to profile one method under perf\n"
@@ -136,6 +143,8 @@ int main(int argc, char **argv)
     bench_common_defaults(&common);
     int json = 0, ground_truth = 1;
     const char *only = NULL; /* --method: measure prepare, analytic and this one (for profiling) */
+    double theta_max_deg = 70.0;
+    int pool = POOL_DEFAULT;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (bench_common_arg(&common, argc, argv, &i)) {
@@ -146,6 +155,21 @@ int main(int argc, char **argv)
                 return 2;
             }
             only = v;
+            i++;
+        } else if (!strcmp(a, "--theta-max-deg")) {
+            theta_max_deg = bench_arg_number(a, v);
+            if (!(theta_max_deg > 0.0 && theta_max_deg < 90.0)) {
+                fprintf(stderr, "bench_spectral: --theta-max-deg must be in (0, 90)\n");
+                return 2;
+            }
+            i++;
+        } else if (!strcmp(a, "--draws")) {
+            double n = bench_arg_number(a, v);
+            pool = (int)n;
+            if (!(n >= 1 && n <= POOL_MAX) || n != pool || (pool & (pool - 1))) {
+                fprintf(stderr, "bench_spectral: --draws must be a power of two in 1-%d\n", POOL_MAX);
+                return 2;
+            }
             i++;
         } else if (!strcmp(a, "--no-ground-truth")) {
             ground_truth = 0;
@@ -185,11 +209,14 @@ int main(int argc, char **argv)
     }
     ctx *c = calloc(1, sizeof *c);
     if (!c) return 1;
-    c->state = calloc(POOL, sizeof *c->state);
-    if (!c->state) return 1;
+    c->pool = pool;
+    c->state = calloc((size_t)pool, sizeof *c->state);
+    c->slab = calloc((size_t)pool, sizeof *c->slab);
+    c->theta = calloc((size_t)pool, sizeof *c->theta);
+    if (!c->state || !c->slab || !c->theta) return 1;
     c->sp = sp;
-    make_pool(c, seed);
-    for (int k = 0; k < POOL; k++)
+    make_pool(c, seed, theta_max_deg);
+    for (int k = 0; k < pool; k++)
         if (biref_slab_prepare(&c->slab[k], c->theta[k], &c->state[k]) != BIREF_OK) {
             fprintf(stderr, "bench_spectral: input %d rejected by biref_slab_prepare\n", k);
             return 1;
@@ -233,8 +260,8 @@ int main(int argc, char **argv)
     const double ref = rows[1].with.ns_median, ref_np = rows[1].without.ns_median;
 
     if (json) {
-        printf("{\"benchmark\":\"bench_spectral\",\"seed\":%llu,\"pool\":%d,\"prepare_ns\":%.2f,\"methods\":[",
-               (unsigned long long)seed, POOL, rows[0].with.ns_median);
+        printf("{\"benchmark\":\"bench_spectral\",\"seed\":%llu,\"pool\":%d,\"theta_max_deg\":%g,\"prepare_ns\":%.2f,\"methods\":[",
+               (unsigned long long)seed, pool, theta_max_deg, rows[0].with.ns_median);
         for (int r = 1; r < nrows; r++) { /* row 1 (analytic) is always enabled: it opens the list */
             if (!rows[r].enabled) continue;
             printf("%s{\"method\":\"%s\",\"ns_per_sample\":%.2f,\"ratio_to_analytic\":%.4f,"
@@ -247,8 +274,8 @@ int main(int argc, char **argv)
         printf("],\"failures\":%ld,\"checksum\":%.17g}\n", c->failures, bench_sink);
     } else {
         printf("bench_spectral: one shading sample = XYZ of |J|^2 for 2 inputs x 2 outputs, T and R; single thread\n");
-        printf("  inputs: %d draws of the fig. 9 slabs, theta 0-70 deg, axis rotated about y, seed %llu\n", POOL,
-               (unsigned long long)seed);
+        printf("  inputs: %d draws of the fig. 9 slabs, theta 0-%g deg, axis rotated about y, seed %llu\n", pool,
+               theta_max_deg, (unsigned long long)seed);
         printf("  biref_slab_prepare alone: %.1f ns (median of %d runs)\n", rows[0].with.ns_median, rows[0].with.runs);
         printf("  %-14s %14s %10s %16s %10s %5s %6s\n", "method", "ns/sample", "ratio", "ns w/o prepare", "ratio",
                "runs", "cpu%");
@@ -272,6 +299,8 @@ int main(int argc, char **argv)
         printf("  failures %ld, checksum %.17g\n", c->failures, bench_sink);
     }
     free(c->state);
+    free(c->slab);
+    free(c->theta);
     free(c);
     biref_spectral_destroy(sp);
     return 0;

@@ -346,85 +346,84 @@ static int merge_degenerate(path_group *g, int G)
 }
 
 /* Group amplitudes by dynamic programming over legs: state = (e legs down, e legs up, current
- * mode), value = row vector over the two inputs. Returns the number of groups. */
+ * mode), value = row vector over the two inputs. Transmission and reflection share it: after
+ * m + 1 down and m up legs the light at the bottom face either leaves (transmission, order m)
+ * or is reflected and goes up, and at the top face after m + 1 legs each way it either leaves
+ * (reflection, order m + 1) or is reflected down again. One recursion in half round trips
+ * serves both. */
 typedef double complex dp_layer[EXP_MAX_ORDER + 2][EXP_MAX_ORDER + 2][2][2]; /* [de][ue][mode][input] */
 
-static int build_groups(const biref_slab_state *st, int which, int order, path_group *g)
+/* dst[de + (down ? mode : 0)][ue + (down ? 0 : mode)][mode] += src[de][ue][x] r[x][mode] over the
+ * region de <= nd, ue <= nu of src: one reflection and the following leg. */
+static void dp_half_step(const dp_layer *src, int nd, int nu, const double complex (*r)[2], int down, dp_layer *dst)
+{
+    for (int de = 0; de <= nd + down; de++) memset((*dst)[de], 0, (size_t)(nu + 2 - down) * sizeof (*dst)[de][0]);
+    for (int de = 0; de <= nd; de++)
+        for (int ue = 0; ue <= nu; ue++) {
+            /* [mode x][input i] as re, im: both modes and inputs at once, in real arithmetic. */
+            const double *x = (const double *)(*src)[de][ue];
+            for (int y = 0; y < 2; y++) {
+                double *t = (double *)(*dst)[de + (down ? y : 0)][ue + (down ? 0 : y)][y];
+                const double fr0 = creal(r[0][y]), fi0 = cimag(r[0][y]), fr1 = creal(r[1][y]), fi1 = cimag(r[1][y]);
+                t[0] += x[0] * fr0 - x[1] * fi0 + x[4] * fr1 - x[5] * fi1;
+                t[1] += x[0] * fi0 + x[1] * fr0 + x[4] * fi1 + x[5] * fr1;
+                t[2] += x[2] * fr0 - x[3] * fi0 + x[6] * fr1 - x[7] * fi1;
+                t[3] += x[2] * fi0 + x[3] * fr0 + x[6] * fi1 + x[7] * fr1;
+            }
+        }
+}
+
+/* The groups of one order leaving through `exit`, appended to g. */
+static int emit_groups(const biref_slab_state *st, const dp_layer *cur, int m, int n_down, int n_up,
+                       const double complex (*exit)[2], path_group *g, int n)
+{
+    const double complex *od = st->opl_down, *ou = st->opl_up;
+    for (int de = 0; de <= n_down; de++)
+        for (int ue = 0; ue <= n_up; ue++) {
+            path_group *p = &g[n++];
+            const double complex(*v)[2] = (*cur)[de][ue];
+            for (int i = 0; i < 2; i++)
+                for (int o = 0; o < 2; o++) p->M[i][o] = v[0][i] * exit[0][o] + v[1][i] * exit[1][o];
+            /* Only the decay of evanescent legs needs it: lags come from the integer coordinates.
+             * Transmission's extra down leg is common to all its groups and cancels in differences. */
+            p->opl = st->total_reflection ? (n_down - de) * od[0] + de * od[1] + (n_up - ue) * ou[0] + ue * ou[1] : 0.0;
+            p->m = m;
+            p->de = de;
+            p->ue = ue;
+        }
+    return n;
+}
+
+/* Transmission groups of orders 0..nT into gT (nT < 0: none) and reflection groups of orders
+ * 0..nR into gR (nR < 0: none), sorted by order; returns their numbers in *GT, *GR. */
+static void build_groups(const biref_slab_state *st, int nT, path_group *gT, int *GT, int nR, path_group *gR, int *GR)
 {
     const double complex(*t01)[2] = st->top.t_down, (*r10)[2] = st->top.r_up, (*t10)[2] = st->top.t_up;
     const double complex(*r12)[2] = st->bottom.r_down, (*t12)[2] = st->bottom.t_down;
-    const double complex *od = st->opl_down, *ou = st->opl_up;
-    /* Two layers used in turn; only the reachable corner [0..order+1][0..order+1] is zeroed
-     * (the full arrays are 13 KB; per-sample cost matters at order 1). */
-    dp_layer layer[2];
-    dp_layer *cur = &layer[0], *nxt = &layer[1];
-    const int span = order + 2;
-    for (int a = 0; a < span; a++) memset((*cur)[a], 0, (size_t)span * sizeof (*cur)[a][0]);
-    int n = 0;
-    const double complex(*exit)[2] = which == BIREF_REFLECTION ? t10 : t12;
-    int m0;
-    if (which == BIREF_TRANSMISSION) {
-        for (int x = 0; x < 2; x++)
-            for (int i = 0; i < 2; i++) (*cur)[x][0][x][i] = t01[i][x];
-        m0 = 0;
-    } else {
-        memcpy(g[n].M, st->top.r_down, sizeof g[n].M);
-        g[n].m = g[n].de = g[n].ue = 0;
-        g[n++].opl = 0.0;
-        for (int x = 0; x < 2; x++)
-            for (int y = 0; y < 2; y++)
-                for (int i = 0; i < 2; i++) (*cur)[x][y][y][i] += t01[i][x] * r12[x][y];
-        m0 = 1;
+    dp_layer down, up; /* light at the bottom face (after m + 1 down, m up legs), at the top face */
+    int nt = 0, nr = 0;
+    if (nR >= 0) {
+        memcpy(gR[0].M, st->top.r_down, sizeof gR[0].M);
+        gR[0].m = gR[0].de = gR[0].ue = 0;
+        gR[0].opl = 0.0;
+        nr = 1;
     }
-    /* One more round trip: transmission reflects at the bottom (a -> b), goes up, reflects at
-     * the top (b -> c), goes down; reflection the other way round. */
-    const double complex(*ra)[2] = which == BIREF_TRANSMISSION ? r12 : r10;
-    const double complex(*rb)[2] = which == BIREF_TRANSMISSION ? r10 : r12;
-    double complex F[2][2][2];
-    for (int a = 0; a < 2; a++)
-        for (int b = 0; b < 2; b++)
-            for (int c = 0; c < 2; c++) F[a][b][c] = ra[a][b] * rb[b][c];
-    for (int m = m0; m <= order; m++) {
-        /* Legs so far: transmission m+1 down, m up; reflection m down, m up. */
-        int n_down = which == BIREF_TRANSMISSION ? m + 1 : m, n_up = m;
-        for (int de = 0; de <= n_down; de++)
-            for (int ue = 0; ue <= n_up; ue++) {
-                path_group *p = &g[n++];
-                const double complex(*v)[2] = (*cur)[de][ue];
-                for (int i = 0; i < 2; i++)
-                    for (int o = 0; o < 2; o++) p->M[i][o] = v[0][i] * exit[0][o] + v[1][i] * exit[1][o];
-                /* Only the decay of evanescent legs needs it: lags come from the integer coordinates.
-                 * Transmission's extra down leg is common to all groups and cancels in differences. */
-                p->opl = st->total_reflection ? (n_down - de) * od[0] + de * od[1] + (n_up - ue) * ou[0] + ue * ou[1] : 0.0;
-                p->m = m;
-                p->de = de;
-                p->ue = ue;
-            }
-        if (m == order) break;
-        for (int a = 0; a < span; a++) memset((*nxt)[a], 0, (size_t)span * sizeof (*nxt)[a][0]);
-        for (int de = 0; de <= n_down; de++)
-            for (int ue = 0; ue <= n_up; ue++) {
-                /* [mode a][input i] as re, im: both modes and inputs at once, in real arithmetic
-                 * (the hottest loop at high orders). */
-                const double *x = (const double *)(*cur)[de][ue];
-                for (int b = 0; b < 2; b++)
-                    for (int c = 0; c < 2; c++) {
-                        /* transmission: b is the up leg, c the down leg; reflection: b down, c up */
-                        int dde = which == BIREF_TRANSMISSION ? c : b, due = which == BIREF_TRANSMISSION ? b : c;
-                        double *y = (double *)(*nxt)[de + dde][ue + due][c];
-                        const double fr0 = creal(F[0][b][c]), fi0 = cimag(F[0][b][c]);
-                        const double fr1 = creal(F[1][b][c]), fi1 = cimag(F[1][b][c]);
-                        y[0] += x[0] * fr0 - x[1] * fi0 + x[4] * fr1 - x[5] * fi1;
-                        y[1] += x[0] * fi0 + x[1] * fr0 + x[4] * fi1 + x[5] * fr1;
-                        y[2] += x[2] * fr0 - x[3] * fi0 + x[6] * fr1 - x[7] * fi1;
-                        y[3] += x[2] * fi0 + x[3] * fr0 + x[6] * fi1 + x[7] * fr1;
-                    }
-            }
-        dp_layer *t = cur;
-        cur = nxt;
-        nxt = t;
+    const int rounds = nT > nR - 1 ? nT : nR - 1;
+    if (rounds >= 0) {
+        memset(down, 0, 2 * sizeof down[0]);
+        for (int x = 0; x < 2; x++)
+            for (int i = 0; i < 2; i++) down[x][0][x][i] = t01[i][x];
     }
-    return n;
+    for (int m = 0; m <= rounds; m++) {
+        if (m <= nT) nt = emit_groups(st, (const dp_layer *)&down, m, m + 1, m, t12, gT, nt);
+        if (m + 1 > nR && m == rounds) break;
+        dp_half_step((const dp_layer *)&down, m + 1, m, r12, 0, &up);
+        if (m + 1 <= nR) nr = emit_groups(st, (const dp_layer *)&up, m + 1, m + 1, m + 1, t10, gR, nr);
+        if (m == rounds) break;
+        dp_half_step((const dp_layer *)&up, m + 1, m + 1, r10, 1, &down);
+    }
+    if (GT) *GT = nt;
+    if (GR) *GR = nr;
 }
 
 static inline double abs2(double complex z) { return creal(z) * creal(z) + cimag(z) * cimag(z); }
@@ -642,12 +641,8 @@ static void form_vectors(const path_group *g, int G, const quad_form *f, double 
     }
 }
 
-/* Path groups of the chosen order, degenerate legs merged. */
-static int groups_for(const biref_slab_state *st, int which, int order, path_group *g)
-{
-    int G = build_groups(st, which, order, g);
-    return legs_degenerate(st) ? merge_degenerate(g, G) : G;
-}
+/* Degenerate legs merged (see merge_degenerate). */
+static int merged(const biref_slab_state *st, path_group *g, int G) { return legs_degenerate(st) ? merge_degenerate(g, G) : G; }
 
 /* Number of leading groups of order <= n (groups are sorted by order). */
 static int groups_below(const path_group *g, int G, int n)
@@ -657,16 +652,13 @@ static int groups_below(const path_group *g, int G, int n)
     return a;
 }
 
-/* Fast path for the four pure pairs (input i fully polarized, analyzer passing output o):
- * one component per form, v_g = M_g[i][o]. */
-static int expansion_pairs(phase_cache *pc, const biref_slab_state *st, int which, const quad_form *forms,
-                           const biref_expansion_opts *opts, double out[4][3])
+/* The pair sums of one direction's groups and its tail, for the four pure pairs (input i fully
+ * polarized, analyzer passing output o): one component per form, v_g = M_g[i][o]. */
+static void pure_pair_intensities(phase_cache *pc, const biref_slab_state *st, int which, const tail_model *tm,
+                                  expansion_orders ord, path_group *g, int G, double out[4][3])
 {
-    tail_model tm;
-    tail_setup(pc->sp, st, which, forms, 4, &tm);
-    expansion_orders ord = choose_orders(pc, st, &tm, which, 4, opts);
-    path_group g[EXP_MAX_GROUPS];
-    int G = groups_for(st, which, ord.groups, g), Gp = groups_below(g, G, ord.pairs);
+    G = merged(st, g, G);
+    int Gp = groups_below(g, G, ord.pairs);
     double complex v[EXP_MAX_GROUPS][MAX_COMP];
     for (int a = 0; a < G; a++)
         for (int k = 0; k < 4; k++) v[a][k] = g[a].M[k >> 1][k & 1];
@@ -674,10 +666,9 @@ static int expansion_pairs(phase_cache *pc, const biref_slab_state *st, int whic
     int lowest = which == BIREF_TRANSMISSION ? 0 : 1;
     for (int k = 0; k < 4; k++) {
         double tail[3];
-        tail_energy(&tm, k, ord.groups + 1 - lowest, tail);
+        tail_energy(tm, k, ord.groups + 1 - lowest, tail);
         for (int j = 0; j < 3; j++) out[k][j] += tail[j];
     }
-    return ord.pairs;
 }
 
 /* The detected intensity of one general form (any coherency matrix and analyzer). */
@@ -690,7 +681,13 @@ static int expansion_core(const biref_spectral *sp, const biref_slab_state *st, 
     cache_init(&pc, sp, st);
     expansion_orders ord = choose_orders(&pc, st, &tm, which, 1, opts);
     path_group g[EXP_MAX_GROUPS];
-    int G = groups_for(st, which, ord.groups, g), Gp = groups_below(g, G, ord.pairs);
+    int G;
+    if (which == BIREF_TRANSMISSION)
+        build_groups(st, ord.groups, g, &G, -1, NULL, NULL);
+    else
+        build_groups(st, -1, NULL, NULL, ord.groups, g, &G);
+    G = merged(st, g, G);
+    int Gp = groups_below(g, G, ord.pairs);
     double complex v[EXP_MAX_GROUPS][MAX_COMP];
     form_vectors(g, G, form, v);
     double comp[MAX_COMP][3];
@@ -745,12 +742,22 @@ biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab
     quad_form f[4];
     for (int i = 0; i < 2; i++)
         for (int o = 0; o < 2; o++) f[2 * i + o] = (quad_form){Cin[i], Pout[o]};
-    /* Transmission and reflection share the path differences, hence the band integrals. */
+    /* Transmission and reflection share the path differences, hence the band integrals, and
+     * the amplitude recursion. */
     phase_cache pc;
     cache_init(&pc, sp, st);
+    tail_model tm[2];
+    expansion_orders ord[2];
+    for (int which = 0; which < 2; which++) {
+        tail_setup(sp, st, which, f, 4, &tm[which]);
+        ord[which] = choose_orders(&pc, st, &tm[which], which, 4, opts);
+    }
+    path_group gT[EXP_MAX_GROUPS], gR[EXP_MAX_GROUPS];
+    int G[2];
+    build_groups(st, ord[0].groups, gT, &G[0], ord[1].groups, gR, &G[1]);
     for (int which = 0; which < 2; which++) {
         double res[4][3];
-        expansion_pairs(&pc, st, which, f, opts, res);
+        pure_pair_intensities(&pc, st, which, &tm[which], ord[which], which ? gR : gT, G[which], res);
         double(*X)[2][3] = which == BIREF_REFLECTION ? out->R : out->T;
         for (int i = 0; i < 2; i++)
             for (int o = 0; o < 2; o++) memcpy(X[i][o], res[2 * i + o], sizeof res[0]);

@@ -118,8 +118,8 @@ void biref_expansion_opts_default(biref_expansion_opts *o);
  * the S(cos), S(sin) table; adaptive runs add the own intensity of up to two more orders' groups;
  * paths beyond are added incoherently in closed form. Detected intensity for incident coherency
  * C and analyzer P (NULL = none), which = BIREF_TRANSMISSION or BIREF_REFLECTION. *order_used
- * (the pair order) may be NULL. No allocation; about 220 KB of stack per call (threads created
- * with small stacks need at least 256 KB). */
+ * (the pair order) may be NULL. No allocation; about 250 KB of stack per call (threads created
+ * with small stacks need at least 512 KB). */
 biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
                                                 const double complex C[2][2], const double complex P[2][2],
                                                 const biref_expansion_opts *opts, double xyz[3], int *order_used);

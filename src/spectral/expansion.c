@@ -7,9 +7,9 @@
  *     I(k) = sum_{g,h} c_gh e^{ik(Phi_g - conj Phi_h)},   c_gh = sum C_ij (M_g P)_io conj((M_h P)_jo),
  * so its band integral is exact given S(cos kD) and S(sin kD) at the pairwise differences. The
  * paper's eq. 26 keeps only some pairs (order 0 and "descendants"); here every pair up to the
- * cut-off order interferes. Orders beyond it add their energy incoherently, summed in closed form
- * (the geometric series of eq. 20-21 started at order n + 1); the adaptive order is the smallest
- * whose tail is below a tolerance of the total. */
+ * pair order interferes, groups of up to two more orders add their own intensity (the paths of a
+ * group are coherent with each other), and the paths beyond add their energy incoherently, summed
+ * in closed form (the geometric series of eq. 20-21); see choose_orders and docs/PHYSICS.md §5. */
 #include <complex.h>
 #include <math.h>
 #include <string.h>

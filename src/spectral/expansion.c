@@ -567,21 +567,37 @@ static expansion_orders choose_orders(phase_cache *pc, const biref_slab_state *s
      * must count the interference between them. */
     double coh_intra = dmax2(dmax2(band_coherence(pc, 0, 1, 0), band_coherence(pc, 0, 0, 1)),
                              dmax2(band_coherence(pc, 0, 1, 1), band_coherence(pc, 0, 1, -1)));
-    double total[EXP_MAX_FORMS][3];
-    for (int k = 0; k < nf; k++) tail_energy(tm, k, 0, total[k]);
+    /* Tail energies by forward iteration: the energy arriving in each mode at the first dropped
+     * order, times y = (I - Dbar)^{-1} out_q, sums the rest of the geometric series. */
+    const int nb = tm->bands;
+    double total[EXP_MAX_FORMS][3], v[EXP_MAX_FORMS][3][2], y[EXP_MAX_FORMS][3][2];
+    for (int k = 0; k < nf; k++)
+        for (int j = 0; j < nb; j++) {
+            const double(*inv)[2] = tm->inv[j];
+            y[k][j][0] = inv[0][0] * tm->out_q[k][0] + inv[0][1] * tm->out_q[k][1];
+            y[k][j][1] = inv[1][0] * tm->out_q[k][0] + inv[1][1] * tm->out_q[k][1];
+            v[k][j][0] = tm->first[k][j][0];
+            v[k][j][1] = tm->first[k][j][1];
+            total[k][j] = v[k][j][0] * y[k][j][0] + v[k][j][1] * y[k][j][1];
+        }
     expansion_orders r = {cap, cap};
     int have_pairs = 0, have_groups = 0;
     for (int n = 1; n < cap && !(have_pairs && have_groups); n++) {
         int ok_pairs = 1, ok_groups = 1;
-        for (int k = 0; k < nf; k++) {
-            double tail[3];
-            tail_energy(tm, k, n + 1 - lowest, tail);
-            for (int j = 0; j < 3; j++) {
+        for (int k = 0; k < nf; k++)
+            for (int j = 0; j < nb; j++) {
+                const double(*D)[2] = tm->Dbar[j];
+                /* from the energy of order n - lowest (or the first order) to order n + 1 */
+                for (int step = n == 1 ? 2 - lowest : 1; step > 0; step--) {
+                    double w0 = v[k][j][0] * D[0][0] + v[k][j][1] * D[1][0];
+                    double w1 = v[k][j][0] * D[0][1] + v[k][j][1] * D[1][1];
+                    v[k][j][0] = w0, v[k][j][1] = w1;
+                }
+                double tail = v[k][j][0] * y[k][j][0] + v[k][j][1] * y[k][j][1];
                 double limit = o->tolerance * total[k][j] + 1e-300;
-                if (tail[j] * coh_intra + 2.0 * sqrt(tail[j] * total[k][j]) * coh_cross > limit) ok_pairs = 0;
-                if (tail[j] > limit) ok_groups = 0;
+                if (tail > limit) ok_groups = 0;
+                if (tail * coh_intra + 2.0 * sqrt(tail * total[k][j]) * coh_cross > limit) ok_pairs = 0;
             }
-        }
         if (ok_pairs && !have_pairs) r.pairs = n, have_pairs = 1;
         if (ok_groups && !have_groups) r.groups = n, have_groups = 1;
     }

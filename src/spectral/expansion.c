@@ -149,6 +149,15 @@ static int block_pair_vanishes(const phase_cache *pc, const lag_box *p, const la
     return dmin > far || dmax < -far;
 }
 
+/* out[c] += 2 Re(z[c] S(e^{ikD})) per band, given S(cos kD), S(sin kD): the pairs (a, b) and (b, a)
+ * of one lag together. */
+static inline void add_pair_integral(double out[][3], const double complex z[MAX_COMP], const double cc[3],
+                                     const double ss[3])
+{
+    for (int c = 0; c < MAX_COMP; c++)
+        for (int j = 0; j < 3; j++) out[c][j] += 2.0 * (creal(z[c]) * cc[j] - cimag(z[c]) * ss[j]);
+}
+
 /* Band integrals of the pair sums per component: out[c][j] = sum_{a,b} S_j(v_a[c] conj(v_b[c])
  * e^{ik(Phi_a - conj Phi_b)}) over the pairs among the first Gp groups, plus the own intensity
  * of all G groups. Groups must be sorted by order m. Always MAX_COMP components (unused ones
@@ -227,11 +236,10 @@ static void pair_sums(phase_cache *pc, const path_group *g, int G, int Gp, const
                     int h = cache_slot(pc, dm, dde, due);
                     if (h < 0) {
                         double cc[3], ss[3];
+                        double complex z[MAX_COMP];
                         biref_spectral_phase_integrals(pc->sp, lag_opd(pc, dm, dde, due), cc, ss);
-                        for (int c = 0; c < MAX_COMP; c++) {
-                            double complex z = v[a][c] * conj(v[b][c]);
-                            for (int j = 0; j < 3; j++) out[c][j] += 2.0 * (creal(z) * cc[j] - cimag(z) * ss[j]);
-                        }
+                        for (int c = 0; c < MAX_COMP; c++) z[c] = v[a][c] * conj(v[b][c]);
+                        add_pair_integral(out, z, cc, ss);
                         continue;
                     }
                     if (!acc.used[h]) {
@@ -257,16 +265,9 @@ static void pair_sums(phase_cache *pc, const path_group *g, int G, int Gp, const
         int dde = (i / wu) - maxde, due = (i % wu) - maxue;
         double cc[3], ss[3];
         lag0_integrals(pc, dde, due, cc, ss);
-        for (int c = 0; c < MAX_COMP; c++)
-            for (int j = 0; j < 3; j++) out[c][j] += 2.0 * (creal(z[c]) * cc[j] - cimag(z[c]) * ss[j]);
+        add_pair_integral(out, z, cc, ss);
     }
-    for (int t = 0; t < acc.n; t++) {
-        int h = acc.list[t];
-        for (int c = 0; c < MAX_COMP; c++) {
-            double re = 2.0 * creal(acc.hash[h][c]), im = 2.0 * cimag(acc.hash[h][c]);
-            for (int j = 0; j < 3; j++) out[c][j] += re * pc->c[h][j] - im * pc->s[h][j];
-        }
-    }
+    for (int t = 0; t < acc.n; t++) add_pair_integral(out, acc.hash[acc.list[t]], pc->c[acc.list[t]], pc->s[acc.list[t]]);
 }
 
 void biref_expansion_opts_default(biref_expansion_opts *o)
@@ -433,14 +434,15 @@ typedef struct {
     const double complex (*P)[2];
 } quad_form;
 
-/* Incoherent energies of the paths of order > order for each form and band. Returns, per form,
- * the tail and the total (all orders, incoherent) so the adaptive rule can compare them. */
+/* Incoherent energies of the paths, per form and band, as a geometric series over round trips:
+ * v_n = first Dbar^n is the energy arriving in each mode at order lowest + n, and
+ * v_n y with y = (I - Dbar)^{-1} out_q the energy that leaves from there on. */
 typedef struct {
-    double in_q[EXP_MAX_FORMS][2], out_q[EXP_MAX_FORMS][2];
     double Dbar[3][2][2];
-    double inv[3][2][2]; /* (I - Dbar)^{-1} */
-    double first[EXP_MAX_FORMS][3][2]; /* energy arriving in each mode after the lowest order */
-    int bands; /* 3 with evanescent legs (their decay depends on the band), else 1: all bands equal */
+    double first[EXP_MAX_FORMS][3][2]; /* energy arriving in each mode at the lowest order */
+    double y[EXP_MAX_FORMS][3][2];
+    int bands;  /* 3 with evanescent legs (their decay depends on the band), else 1: all bands equal */
+    int lowest; /* lowest order: 0 in transmission, 1 in reflection (order 0 is the direct reflection) */
 } tail_model;
 
 static void inv_one_minus(const double M[2][2], double out[2][2])
@@ -455,8 +457,9 @@ static void tail_setup(const biref_spectral *sp, const biref_slab_state *st, int
     const double complex(*t01)[2] = st->top.t_down, (*r10)[2] = st->top.r_up, (*t10)[2] = st->top.t_up;
     const double complex(*r12)[2] = st->bottom.r_down, (*t12)[2] = st->bottom.t_down;
     const double complex(*exit)[2] = which == BIREF_REFLECTION ? t10 : t12;
-    double ed[2][3], eu[2][3];
+    double ed[2][3], eu[2][3], in_q[EXP_MAX_FORMS][2], out_q[EXP_MAX_FORMS][2];
     tm->bands = st->total_reflection ? 3 : 1;
+    tm->lowest = which == BIREF_TRANSMISSION ? 0 : 1;
     for (int m = 0; m < 2; m++)
         for (int j = 0; j < 3; j++) {
             double imd = cimag(st->opl_down[m]), imu = cimag(st->opl_up[m]);
@@ -469,13 +472,13 @@ static void tail_setup(const biref_spectral *sp, const biref_slab_state *st, int
             double q = 0.0;
             for (int i = 0; i < 2; i++)
                 for (int jj = 0; jj < 2; jj++) q += creal(C[i][jj] * t01[i][x] * conj(t01[jj][x]));
-            tm->in_q[k][x] = q;
+            in_q[k][x] = q;
             double o2 = 0.0;
             for (int o = 0; o < 2; o++) {
                 double complex v = P ? exit[x][0] * P[0][o] + exit[x][1] * P[1][o] : exit[x][o];
                 o2 += abs2(v);
             }
-            tm->out_q[k][x] = o2;
+            out_q[k][x] = o2;
         }
     }
     for (int j = 0; j < tm->bands; j++) {
@@ -487,30 +490,33 @@ static void tail_setup(const biref_spectral *sp, const biref_slab_state *st, int
                                                      : abs2(r10[a][b]) * ed[b][j] * abs2(r12[b][c]) * eu[c][j];
                 tm->Dbar[j][a][c] = e;
             }
-        inv_one_minus(tm->Dbar[j], tm->inv[j]);
+        double inv[2][2];
+        inv_one_minus(tm->Dbar[j], inv);
         for (int k = 0; k < nf; k++)
             for (int a = 0; a < 2; a++) {
                 if (which == BIREF_TRANSMISSION)
-                    tm->first[k][j][a] = tm->in_q[k][a] * ed[a][j];
+                    tm->first[k][j][a] = in_q[k][a] * ed[a][j];
                 else
-                    tm->first[k][j][a] = (tm->in_q[k][0] * ed[0][j] * abs2(r12[0][a]) + tm->in_q[k][1] * ed[1][j] * abs2(r12[1][a])) * eu[a][j];
+                    tm->first[k][j][a] = (in_q[k][0] * ed[0][j] * abs2(r12[0][a]) + in_q[k][1] * ed[1][j] * abs2(r12[1][a])) * eu[a][j];
+                tm->y[k][j][a] = inv[a][0] * out_q[k][0] + inv[a][1] * out_q[k][1];
             }
     }
 }
 
-/* Energy of orders >= lowest + skip (incoherent), per form and band. */
-static void tail_energy(const tail_model *tm, int k, int skip, double out[3])
+/* One round trip of the incoherent energies: v <- v Dbar. */
+static inline void tail_step(const double D[2][2], double v[2])
+{
+    double w0 = v[0] * D[0][0] + v[1] * D[1][0], w1 = v[0] * D[0][1] + v[1] * D[1][1];
+    v[0] = w0, v[1] = w1;
+}
+
+/* Incoherent energy of the paths of orders > order, per band, for form k. */
+static void tail_energy(const tail_model *tm, int k, int order, double out[3])
 {
     for (int j = 0; j < tm->bands; j++) {
         double v[2] = {tm->first[k][j][0], tm->first[k][j][1]};
-        for (int s = 0; s < skip; s++) {
-            double w0 = v[0] * tm->Dbar[j][0][0] + v[1] * tm->Dbar[j][1][0];
-            double w1 = v[0] * tm->Dbar[j][0][1] + v[1] * tm->Dbar[j][1][1];
-            v[0] = w0, v[1] = w1;
-        }
-        double u0 = v[0] * tm->inv[j][0][0] + v[1] * tm->inv[j][1][0];
-        double u1 = v[0] * tm->inv[j][0][1] + v[1] * tm->inv[j][1][1];
-        out[j] = u0 * tm->out_q[k][0] + u1 * tm->out_q[k][1];
+        for (int s = tm->lowest; s <= order; s++) tail_step(tm->Dbar[j], v);
+        out[j] = v[0] * tm->y[k][j][0] + v[1] * tm->y[k][j][1];
     }
     if (tm->bands == 1) out[1] = out[2] = out[0];
 }
@@ -547,10 +553,10 @@ typedef struct {
  *    thin or near-axis slabs get more orders.
  * Measured on the fig. 9 sweep (docs/ACCURACY.md) rather than proven: (a) counts only the
  * shortest lags. */
-static expansion_orders choose_orders(phase_cache *pc, const biref_slab_state *st, const tail_model *tm, int which,
-                                      int nf, const biref_expansion_opts *o)
+static expansion_orders choose_orders(phase_cache *pc, const biref_slab_state *st, const tail_model *tm, int nf,
+                                      const biref_expansion_opts *o)
 {
-    int lowest = which == BIREF_TRANSMISSION ? 0 : 1;
+    const int lowest = tm->lowest;
     if (o->order >= 0) {
         int n = o->order < lowest ? lowest : (o->order > EXP_MAX_ORDER ? EXP_MAX_ORDER : o->order);
         return (expansion_orders){n, n};
@@ -567,18 +573,14 @@ static expansion_orders choose_orders(phase_cache *pc, const biref_slab_state *s
      * must count the interference between them. */
     double coh_intra = dmax2(dmax2(band_coherence(pc, 0, 1, 0), band_coherence(pc, 0, 0, 1)),
                              dmax2(band_coherence(pc, 0, 1, 1), band_coherence(pc, 0, 1, -1)));
-    /* Tail energies by forward iteration: the energy arriving in each mode at the first dropped
-     * order, times y = (I - Dbar)^{-1} out_q, sums the rest of the geometric series. */
+    /* Tail energies by forward iteration (tail_energy for every candidate order at once). */
     const int nb = tm->bands;
-    double total[EXP_MAX_FORMS][3], v[EXP_MAX_FORMS][3][2], y[EXP_MAX_FORMS][3][2];
+    double total[EXP_MAX_FORMS][3], v[EXP_MAX_FORMS][3][2];
     for (int k = 0; k < nf; k++)
         for (int j = 0; j < nb; j++) {
-            const double(*inv)[2] = tm->inv[j];
-            y[k][j][0] = inv[0][0] * tm->out_q[k][0] + inv[0][1] * tm->out_q[k][1];
-            y[k][j][1] = inv[1][0] * tm->out_q[k][0] + inv[1][1] * tm->out_q[k][1];
             v[k][j][0] = tm->first[k][j][0];
             v[k][j][1] = tm->first[k][j][1];
-            total[k][j] = v[k][j][0] * y[k][j][0] + v[k][j][1] * y[k][j][1];
+            total[k][j] = v[k][j][0] * tm->y[k][j][0] + v[k][j][1] * tm->y[k][j][1];
         }
     expansion_orders r = {cap, cap};
     int have_pairs = 0, have_groups = 0;
@@ -586,14 +588,9 @@ static expansion_orders choose_orders(phase_cache *pc, const biref_slab_state *s
         int ok_pairs = 1, ok_groups = 1;
         for (int k = 0; k < nf; k++)
             for (int j = 0; j < nb; j++) {
-                const double(*D)[2] = tm->Dbar[j];
-                /* from the energy of order n - lowest (or the first order) to order n + 1 */
-                for (int step = n == 1 ? 2 - lowest : 1; step > 0; step--) {
-                    double w0 = v[k][j][0] * D[0][0] + v[k][j][1] * D[1][0];
-                    double w1 = v[k][j][0] * D[0][1] + v[k][j][1] * D[1][1];
-                    v[k][j][0] = w0, v[k][j][1] = w1;
-                }
-                double tail = v[k][j][0] * y[k][j][0] + v[k][j][1] * y[k][j][1];
+                /* from the energy arriving at order n (at the lowest order for n = 1) to order n + 1 */
+                for (int step = n == 1 ? 2 - lowest : 1; step > 0; step--) tail_step(tm->Dbar[j], v[k][j]);
+                double tail = v[k][j][0] * tm->y[k][j][0] + v[k][j][1] * tm->y[k][j][1];
                 double limit = o->tolerance * total[k][j] + 1e-300;
                 if (tail > limit) ok_groups = 0;
                 if (tail * coh_intra + 2.0 * sqrt(tail * total[k][j]) * coh_cross > limit) ok_pairs = 0;
@@ -670,7 +667,7 @@ static int groups_below(const path_group *g, int G, int n)
 
 /* The pair sums of one direction's groups and its tail, for the four pure pairs (input i fully
  * polarized, analyzer passing output o): one component per form, v_g = M_g[i][o]. */
-static void pure_pair_intensities(phase_cache *pc, const biref_slab_state *st, int which, const tail_model *tm,
+static void pure_pair_intensities(phase_cache *pc, const biref_slab_state *st, const tail_model *tm,
                                   expansion_orders ord, path_group *g, int G, double out[4][3])
 {
     G = merged(st, g, G);
@@ -679,10 +676,9 @@ static void pure_pair_intensities(phase_cache *pc, const biref_slab_state *st, i
     for (int a = 0; a < G; a++)
         for (int k = 0; k < 4; k++) v[a][k] = g[a].M[k >> 1][k & 1];
     pair_sums(pc, g, G, Gp, (const double complex(*)[MAX_COMP])v, st->total_reflection, out);
-    int lowest = which == BIREF_TRANSMISSION ? 0 : 1;
     for (int k = 0; k < 4; k++) {
         double tail[3];
-        tail_energy(tm, k, ord.groups + 1 - lowest, tail);
+        tail_energy(tm, k, ord.groups, tail);
         for (int j = 0; j < 3; j++) out[k][j] += tail[j];
     }
 }
@@ -695,7 +691,7 @@ static int expansion_core(const biref_spectral *sp, const biref_slab_state *st, 
     tail_setup(sp, st, which, form, 1, &tm);
     phase_cache pc;
     cache_init(&pc, sp, st);
-    expansion_orders ord = choose_orders(&pc, st, &tm, which, 1, opts);
+    expansion_orders ord = choose_orders(&pc, st, &tm, 1, opts);
     path_group g[EXP_MAX_GROUPS];
     int G;
     if (which == BIREF_TRANSMISSION)
@@ -708,8 +704,7 @@ static int expansion_core(const biref_spectral *sp, const biref_slab_state *st, 
     form_vectors(g, G, form, v);
     double comp[MAX_COMP][3];
     pair_sums(&pc, g, G, Gp, (const double complex(*)[MAX_COMP])v, st->total_reflection, comp);
-    int lowest = which == BIREF_TRANSMISSION ? 0 : 1;
-    tail_energy(&tm, 0, ord.groups + 1 - lowest, out);
+    tail_energy(&tm, 0, ord.groups, out);
     for (int c = 0; c < MAX_COMP; c++)
         for (int j = 0; j < 3; j++) out[j] += comp[c][j];
     return ord.pairs;
@@ -721,8 +716,7 @@ void biref_expansion_tail(const biref_spectral *sp, const biref_slab_state *st, 
     quad_form f = {C, P};
     tail_model tm;
     tail_setup(sp, st, which, &f, 1, &tm);
-    int lowest = which == BIREF_TRANSMISSION ? 0 : 1;
-    tail_energy(&tm, 0, order + 1 - lowest, out);
+    tail_energy(&tm, 0, order, out);
 }
 
 biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
@@ -766,14 +760,14 @@ biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab
     expansion_orders ord[2];
     for (int which = 0; which < 2; which++) {
         tail_setup(sp, st, which, f, 4, &tm[which]);
-        ord[which] = choose_orders(&pc, st, &tm[which], which, 4, opts);
+        ord[which] = choose_orders(&pc, st, &tm[which], 4, opts);
     }
     path_group gT[EXP_MAX_GROUPS], gR[EXP_MAX_GROUPS];
     int G[2];
     build_groups(st, ord[0].groups, gT, &G[0], ord[1].groups, gR, &G[1]);
     for (int which = 0; which < 2; which++) {
         double res[4][3];
-        pure_pair_intensities(&pc, st, which, &tm[which], ord[which], which ? gR : gT, G[which], res);
+        pure_pair_intensities(&pc, st, &tm[which], ord[which], which ? gR : gT, G[which], res);
         double(*X)[2][3] = which == BIREF_REFLECTION ? out->R : out->T;
         for (int i = 0; i < 2; i++)
             for (int o = 0; o < 2; o++) memcpy(X[i][o], res[2 * i + o], sizeof res[0]);

@@ -1,10 +1,10 @@
 /* Closed-form plane-stress fields (docs/PHOTOELASTICITY.md, "Stress fields") and the plate
  * description that couples a field to its outline and picture frame. */
 #include <math.h>
-#include <stdio.h>
 #include <string.h>
 
 #include "biref/photoelastic.h"
+#include "optics/validate.h"
 
 void biref_pe_disk_stress(double R, double h, double P, double x, double y, biref_pe_stress *out)
 {
@@ -59,12 +59,6 @@ void biref_pe_beam_stress(double H, double h, double M, double x, double y, bire
     out->txy = 0.0;
 }
 
-static biref_status fail(char *msg, size_t msg_len, const char *what)
-{
-    if (msg && msg_len) snprintf(msg, msg_len, "%s", what);
-    return BIREF_ERR_INVALID;
-}
-
 static int positive(double v) { return isfinite(v) && v > 0.0; }
 
 static void base(biref_pe_field *f, biref_pe_field_kind kind, double h)
@@ -76,9 +70,9 @@ static void base(biref_pe_field *f, biref_pe_field_kind kind, double h)
 
 biref_status biref_pe_field_disk(biref_pe_field *f, double R, double h, double P, char *msg, size_t msg_len)
 {
-    if (!positive(R)) return fail(msg, msg_len, "disk radius must be positive");
-    if (!positive(h)) return fail(msg, msg_len, "thickness must be positive");
-    if (!isfinite(P) || P < 0.0) return fail(msg, msg_len, "load must be a finite compressive force >= 0");
+    if (!positive(R)) return biref_fail(msg, msg_len, "disk radius must be positive");
+    if (!positive(h)) return biref_fail(msg, msg_len, "thickness must be positive");
+    if (!isfinite(P) || P < 0.0) return biref_fail(msg, msg_len, "load must be a finite compressive force >= 0");
     base(f, BIREF_PE_DISK, h);
     f->radius = R;
     f->load = P;
@@ -93,12 +87,12 @@ biref_status biref_pe_field_disk(biref_pe_field *f, double R, double h, double P
 biref_status biref_pe_field_hole(biref_pe_field *f, double a, double width, double height, double h, double S,
                                  double angle, char *msg, size_t msg_len)
 {
-    if (!positive(a)) return fail(msg, msg_len, "hole radius must be positive");
-    if (!positive(width) || !positive(height)) return fail(msg, msg_len, "plate width and height must be positive");
-    if (!(2.0 * a < width && 2.0 * a < height)) return fail(msg, msg_len, "the hole must fit inside the plate");
-    if (!positive(h)) return fail(msg, msg_len, "thickness must be positive");
-    if (!isfinite(S)) return fail(msg, msg_len, "remote stress must be finite");
-    if (!isfinite(angle)) return fail(msg, msg_len, "tension direction must be finite");
+    if (!positive(a)) return biref_fail(msg, msg_len, "hole radius must be positive");
+    if (!positive(width) || !positive(height)) return biref_fail(msg, msg_len, "plate width and height must be positive");
+    if (!(2.0 * a < width && 2.0 * a < height)) return biref_fail(msg, msg_len, "the hole must fit inside the plate");
+    if (!positive(h)) return biref_fail(msg, msg_len, "thickness must be positive");
+    if (!isfinite(S)) return biref_fail(msg, msg_len, "remote stress must be finite");
+    if (!isfinite(angle)) return biref_fail(msg, msg_len, "tension direction must be finite");
     base(f, BIREF_PE_HOLE, h);
     f->angle = angle;
     f->radius = a;
@@ -115,10 +109,10 @@ biref_status biref_pe_field_hole(biref_pe_field *f, double a, double width, doub
 biref_status biref_pe_field_beam(biref_pe_field *f, double length, double H, double h, double M, char *msg,
                                  size_t msg_len)
 {
-    if (!positive(length)) return fail(msg, msg_len, "beam length must be positive");
-    if (!positive(H)) return fail(msg, msg_len, "beam depth must be positive");
-    if (!positive(h)) return fail(msg, msg_len, "thickness must be positive");
-    if (!isfinite(M)) return fail(msg, msg_len, "bending moment must be finite");
+    if (!positive(length)) return biref_fail(msg, msg_len, "beam length must be positive");
+    if (!positive(H)) return biref_fail(msg, msg_len, "beam depth must be positive");
+    if (!positive(h)) return biref_fail(msg, msg_len, "thickness must be positive");
+    if (!isfinite(M)) return biref_fail(msg, msg_len, "bending moment must be finite");
     base(f, BIREF_PE_BEAM, h);
     f->width = length;
     f->depth = H;
@@ -132,8 +126,8 @@ biref_status biref_pe_field_beam(biref_pe_field *f, double length, double H, dou
 
 biref_status biref_pe_field_grid(biref_pe_field *f, const biref_pe_grid *g, double h, char *msg, size_t msg_len)
 {
-    if (!g) return fail(msg, msg_len, "no grid");
-    if (!positive(h)) return fail(msg, msg_len, "thickness must be positive");
+    if (!g) return biref_fail(msg, msg_len, "no grid");
+    if (!positive(h)) return biref_fail(msg, msg_len, "thickness must be positive");
     base(f, BIREF_PE_GRID, h);
     f->grid = g;
     biref_pe_grid_bounds(g, f->frame);

@@ -2,12 +2,12 @@
  * and bilinear interpolation (docs/PHOTOELASTICITY.md, "Stress from a file"). */
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "biref/photoelastic.h"
+#include "optics/validate.h"
 
 struct biref_pe_grid {
     int nx, ny;
@@ -26,18 +26,6 @@ typedef struct {
     double v[NCOL];
     long line;
 } row;
-
-static biref_status failf(char *msg, size_t msg_len, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-static biref_status failf(char *msg, size_t msg_len, const char *fmt, ...)
-{
-    if (msg && msg_len) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(msg, msg_len, fmt, ap);
-        va_end(ap);
-    }
-    return BIREF_ERR_INVALID;
-}
 
 /* Trims spaces and tabs in place: [*b, *e). */
 static void trim(const char **b, const char **e)
@@ -104,7 +92,7 @@ static biref_status axis_fit(const row *rows, long n, int col, double lo, double
     double *work = tmp + n, gap;
     int distinct_n = distinct(tmp, n, work, tol, &gap);
     if (distinct_n < 2)
-        return failf(msg, msg_len, "all rows have %s = %g: a grid needs at least 2 distinct values of %s and of %s",
+        return biref_fail(msg, msg_len, "all rows have %s = %g: a grid needs at least 2 distinct values of %s and of %s",
                      name, lo, COL_NAMES[COL_X], COL_NAMES[COL_Y]);
     /* The node spacing is the smallest gap; every value must sit on lo + k * gap. */
     double k_max = span / gap;
@@ -123,7 +111,7 @@ static biref_status axis_fit(const row *rows, long n, int col, double lo, double
             }
         for (long i = 0; i < n; i++)
             if (fabs(rows[i].v[col] - blame) <= tol)
-                return failf(msg, msg_len,
+                return biref_fail(msg, msg_len,
                              "line %ld: %s = %g is not on a regular grid (only %g from the neighbouring value %g)",
                              rows[i].line, name, rows[i].v[col], g_min, before);
     }
@@ -132,7 +120,7 @@ static biref_status axis_fit(const row *rows, long n, int col, double lo, double
     for (long i = 0; i < n; i++) {
         double k = (rows[i].v[col] - lo) / d;
         if (fabs(k - nearbyint(k)) > 1e-3) /* 0.1 % of the spacing: rounding, not a stray node */
-            return failf(msg, msg_len,
+            return biref_fail(msg, msg_len,
                          "line %ld: %s = %g is not on a regular grid (the values of %s run from %g to %g in steps "
                          "of %g)",
                          rows[i].line, name, rows[i].v[col], name, lo, hi, gap);
@@ -146,13 +134,13 @@ static biref_status axis_fit(const row *rows, long n, int col, double lo, double
             if (work[j] - prev > 1.5 * d)
                 for (long i = 0; i < n; i++)
                     if (fabs(rows[i].v[col] - work[j]) <= tol)
-                        return failf(msg, msg_len,
+                        return biref_fail(msg, msg_len,
                                      "line %ld: %s = %g follows %g with a gap of %g, but other values are %g apart: "
                                      "not a regular grid",
                                      rows[i].line, name, rows[i].v[col], prev, work[j] - prev, d);
             prev = work[j];
         }
-        return failf(msg, msg_len, "%s: not a regular grid", name); /* not reached */
+        return biref_fail(msg, msg_len, "%s: not a regular grid", name); /* not reached */
     }
     *count = (int)nodes;
     *step = d;
@@ -161,9 +149,9 @@ static biref_status axis_fit(const row *rows, long n, int col, double lo, double
 
 biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **out, char *msg, size_t msg_len)
 {
-    if (!out) return failf(msg, msg_len, "no output");
+    if (!out) return biref_fail(msg, msg_len, "no output");
     *out = NULL;
-    if (!text) return failf(msg, msg_len, "no text");
+    if (!text) return biref_fail(msg, msg_len, "no text");
     int col_of[NCOL]; /* position in the file of each named column */
     int have_header = 0;
     long line = 0, cap = 0, n = 0;
@@ -184,7 +172,7 @@ biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **o
         trim(&tb, &te);
         if (tb == te || *tb == '#') continue;
         if (memchr(b, '\0', (size_t)(le - b))) {
-            st = failf(msg, msg_len, "line %ld: contains a NUL byte (not a text file?)", line);
+            st = biref_fail(msg, msg_len, "line %ld: contains a NUL byte (not a text file?)", line);
             break;
         }
         const char *fb[NCOL], *fe[NCOL];
@@ -192,7 +180,7 @@ biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **o
         if (!have_header) {
             int seen[NCOL] = {0};
             if (nf > NCOL) {
-                st = failf(msg, msg_len, "line %ld: header has %d columns; expected the 5 columns " HEADER_TEXT, line,
+                st = biref_fail(msg, msg_len, "line %ld: header has %d columns; expected the 5 columns " HEADER_TEXT, line,
                            nf);
                 break;
             }
@@ -210,13 +198,13 @@ biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **o
                     char *endp = NULL;
                     (void)strtod(fb[i], &endp);
                     if (i == 0 && endp != fb[i])
-                        st = failf(msg, msg_len, "line %ld: expected the header " HEADER_TEXT " before the data",
+                        st = biref_fail(msg, msg_len, "line %ld: expected the header " HEADER_TEXT " before the data",
                                    line);
                     else
-                        st = failf(msg, msg_len, "line %ld: unknown column '%.*s' in the header (expected " HEADER_TEXT
+                        st = biref_fail(msg, msg_len, "line %ld: unknown column '%.*s' in the header (expected " HEADER_TEXT
                                    ")", line, (int)(fe[i] - fb[i]) > 40 ? 40 : (int)(fe[i] - fb[i]), fb[i]);
                 } else if (seen[which]) {
-                    st = failf(msg, msg_len, "line %ld: column %s appears twice in the header", line, COL_NAMES[which]);
+                    st = biref_fail(msg, msg_len, "line %ld: column %s appears twice in the header", line, COL_NAMES[which]);
                 } else {
                     seen[which] = 1;
                     col_of[which] = i;
@@ -224,22 +212,22 @@ biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **o
             }
             for (int c = 0; c < NCOL && st == BIREF_OK; c++)
                 if (!seen[c])
-                    st = failf(msg, msg_len, "line %ld: the header lacks column %s (expected " HEADER_TEXT ")", line,
+                    st = biref_fail(msg, msg_len, "line %ld: the header lacks column %s (expected " HEADER_TEXT ")", line,
                                COL_NAMES[c]);
             have_header = 1;
             continue;
         }
         if (nf != NCOL) {
             if (!complete && nf < NCOL)
-                st = failf(msg, msg_len, "line %ld: truncated row (%d of %d fields, and the file ends there)", line, nf,
+                st = biref_fail(msg, msg_len, "line %ld: truncated row (%d of %d fields, and the file ends there)", line, nf,
                            NCOL);
             else
-                st = failf(msg, msg_len, "line %ld: expected %d comma-separated fields, got %d", line, NCOL, nf);
+                st = biref_fail(msg, msg_len, "line %ld: expected %d comma-separated fields, got %d", line, NCOL, nf);
             break;
         }
         if (n == cap) {
             if (n >= MAX_ROWS) {
-                st = failf(msg, msg_len, "line %ld: more than %ld rows", line, MAX_ROWS);
+                st = biref_fail(msg, msg_len, "line %ld: more than %ld rows", line, MAX_ROWS);
                 break;
             }
             long ncap = cap ? 2 * cap : 1024;
@@ -258,12 +246,12 @@ biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **o
             const char *s = fb[col_of[c]], *e = fe[col_of[c]];
             int w = (int)(e - s) > 40 ? 40 : (int)(e - s);
             if (s == e) {
-                st = failf(msg, msg_len, "line %ld, column %s: empty field", line, COL_NAMES[c]);
+                st = biref_fail(msg, msg_len, "line %ld, column %s: empty field", line, COL_NAMES[c]);
                 break;
             }
             char buf[64];
             if ((size_t)(e - s) >= sizeof buf) {
-                st = failf(msg, msg_len, "line %ld, column %s: not a number: '%.*s...'", line, COL_NAMES[c], w, s);
+                st = biref_fail(msg, msg_len, "line %ld, column %s: not a number: '%.*s...'", line, COL_NAMES[c], w, s);
                 break;
             }
             memcpy(buf, s, (size_t)(e - s));
@@ -272,17 +260,17 @@ biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **o
             errno = 0;
             double v = strtod(buf, &endp);
             if (endp == buf || *endp != '\0')
-                st = failf(msg, msg_len, "line %ld, column %s: not a number: '%s'", line, COL_NAMES[c], buf);
+                st = biref_fail(msg, msg_len, "line %ld, column %s: not a number: '%s'", line, COL_NAMES[c], buf);
             else if (!isfinite(v) || errno == ERANGE)
-                st = failf(msg, msg_len, "line %ld, column %s: not a finite number: '%s'", line, COL_NAMES[c], buf);
+                st = biref_fail(msg, msg_len, "line %ld, column %s: not a finite number: '%s'", line, COL_NAMES[c], buf);
             r->v[c] = v;
         }
         n++;
     }
     if (st == BIREF_OK && !have_header)
-        st = failf(msg, msg_len, "empty file: expected the header " HEADER_TEXT " and at least 4 rows");
+        st = biref_fail(msg, msg_len, "empty file: expected the header " HEADER_TEXT " and at least 4 rows");
     if (st == BIREF_OK && n < 4)
-        st = failf(msg, msg_len, "line %ld: the file ends after %ld data row%s; a grid needs at least 2 x 2 nodes",
+        st = biref_fail(msg, msg_len, "line %ld: the file ends after %ld data row%s; a grid needs at least 2 x 2 nodes",
                    line, n, n == 1 ? "" : "s");
     if (st != BIREF_OK) {
         free(rows);
@@ -313,7 +301,7 @@ biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **o
     long *owner = NULL;
     if (st == BIREF_OK) {
         if ((long)g->nx * g->ny > MAX_ROWS) {
-            st = failf(msg, msg_len, "the grid would have %ld nodes (more than %ld)", (long)g->nx * g->ny, MAX_ROWS);
+            st = biref_fail(msg, msg_len, "the grid would have %ld nodes (more than %ld)", (long)g->nx * g->ny, MAX_ROWS);
         } else {
             g->v = malloc((size_t)g->nx * g->ny * 3 * sizeof *g->v);
             owner = malloc((size_t)g->nx * g->ny * sizeof *owner);
@@ -329,7 +317,7 @@ biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **o
             long ix = lround((rows[i].v[COL_X] - lo[0]) / dxm), iy = lround((rows[i].v[COL_Y] - lo[1]) / dym);
             long k = iy * g->nx + ix;
             if (owner[k]) {
-                st = failf(msg, msg_len, "line %ld: node x_mm = %g, y_mm = %g repeats line %ld", rows[i].line,
+                st = biref_fail(msg, msg_len, "line %ld: node x_mm = %g, y_mm = %g repeats line %ld", rows[i].line,
                            rows[i].v[COL_X], rows[i].v[COL_Y], owner[k]);
                 break;
             }
@@ -341,7 +329,7 @@ biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **o
         }
         for (long k = 0; k < (long)g->nx * g->ny && st == BIREF_OK; k++)
             if (!owner[k])
-                st = failf(msg, msg_len, "irregular grid: no row for the node x_mm = %g, y_mm = %g (%d x %d nodes)",
+                st = biref_fail(msg, msg_len, "irregular grid: no row for the node x_mm = %g, y_mm = %g (%d x %d nodes)",
                            lo[0] + (double)(k % g->nx) * dxm, lo[1] + (double)(k / g->nx) * dym, g->nx, g->ny);
     }
     free(owner);

@@ -21,15 +21,6 @@ static void random_slab(test_rng *r, biref_slab *s, double *theta, double dmin, 
     *theta = test_uniform(r, 0, tmax) * M_PI / 180;
 }
 
-static void random_stokes(test_rng *r, double S[4])
-{
-    double a = test_uniform(r, 0, M_PI), b = test_uniform(r, -M_PI / 2, M_PI / 2), dop = test_uniform(r, 0, 1);
-    S[0] = 1.0;
-    S[1] = dop * cos(b) * cos(2 * a);
-    S[2] = dop * cos(b) * sin(2 * a);
-    S[3] = dop * sin(b);
-}
-
 
 /* Brute-force band integral of sum_{p,q} c_pq e^{ik(opl_p - conj opl_q)} over the individual
  * paths of orders <= n (no groups, no merging, no skipped blocks, no folded lags), for input
@@ -105,7 +96,7 @@ int main(void)
             biref_slab s;
             double theta, S[4];
             random_slab(&rng, &s, &theta, 1000, 20000, 0.1, 80);
-            random_stokes(&rng, S);
+            test_random_stokes(&rng, S);
             biref_slab_state st;
             CHECK(biref_slab_prepare(&s, theta, &st) == BIREF_OK);
             double complex C[2][2], P[2][2];
@@ -195,7 +186,7 @@ int main(void)
             biref_slab s;
             double theta, S[4];
             random_slab(&rng, &s, &theta, 1000, 1e6, 0.3, 60);
-            random_stokes(&rng, S);
+            test_random_stokes(&rng, S);
             biref_slab_state st;
             CHECK(biref_slab_prepare(&s, theta, &st) == BIREF_OK);
             double complex C[2][2], P[2][2];
@@ -247,7 +238,7 @@ int main(void)
             o.order = 1 + t % 3 + (t % 10 == 9);
             biref_spectrum e;
             CHECK(biref_spectrum_expansion(sp, &st, &o, &e) == BIREF_OK);
-            random_stokes(&rng, S);
+            test_random_stokes(&rng, S);
             double complex C[2][2], P[2][2];
             CHECK(biref_stokes_to_coherency(S, C) == BIREF_OK);
             if (t % 3 == 0)

@@ -389,15 +389,6 @@ static void test_polariscope_mono(void)
     CHECK(worst_air_formula < 0.01);
 }
 
-static void random_stokes(test_rng *r, double S[4])
-{
-    double a = test_uniform(r, 0, M_PI), b = test_uniform(r, -M_PI / 2, M_PI / 2), dop = test_uniform(r, 0, 1);
-    S[0] = 1.0;
-    S[1] = dop * cos(b) * cos(2 * a);
-    S[2] = dop * cos(b) * sin(2 * a);
-    S[3] = dop * sin(b);
-}
-
 static void test_white(const biref_spectral *sp)
 {
     biref_numeric_plan *gt = NULL;
@@ -415,7 +406,7 @@ static void test_white(const biref_spectral *sp)
         if (t % 4 == 3) {
             double S[4];
             double complex P[2][2];
-            random_stokes(&rng, S);
+            test_random_stokes(&rng, S);
             if (t % 8 == 3)
                 biref_analyzer_circular(t % 16 == 3 ? 1 : -1, P);
             else

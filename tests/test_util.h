@@ -62,4 +62,15 @@ static inline void test_random_axis(test_rng *r, double A[3])
     } while (n < 0.1 || n > 1);
 }
 
+/* A random unit-intensity Stokes vector: polarization ellipse of random orientation and
+ * ellipticity, degree of polarization uniform in [0, 1]. */
+static inline void test_random_stokes(test_rng *r, double S[4])
+{
+    double a = test_uniform(r, 0, M_PI), b = test_uniform(r, -M_PI / 2, M_PI / 2), dop = test_uniform(r, 0, 1);
+    S[0] = 1.0;
+    S[1] = dop * cos(b) * cos(2 * a);
+    S[2] = dop * cos(b) * sin(2 * a);
+    S[3] = dop * sin(b);
+}
+
 #endif

@@ -16,7 +16,10 @@
  * Inputs: the paper's fig. 9 materials at random angles 0-70 deg (the analytic method's stated
  * domain; --theta-max-deg 85 for issue #5's range, where the expansion's cost rises) and random
  * rotations of the optic axis about the surface normal y, generated before timing from a fixed
- * seed. Single thread; measures, never asserts. */
+ * seed. Single thread; measures, never asserts.
+ *
+ * --truncation measures accuracy instead of time: the expansion's adaptive orders against order
+ * 8 on the same draws (docs/PHYSICS.md section 5). */
 #include <complex.h>
 #include <math.h>
 #include <stdio.h>
@@ -24,6 +27,7 @@
 #include <string.h>
 
 #include "biref/biref.h"
+#include "spectral/spectral_internal.h"
 
 #include "bench_clock.h"
 
@@ -113,7 +117,7 @@ static void usage(FILE *f)
 {
     fprintf(f,
             "usage: bench_spectral [--min-time S] [--runs N] [--iterations N] [--seed N] [--no-ground-truth]\n"
-            "                      [--theta-max-deg A] [--draws N] [--method NAME] [--json]\n"
+            "                      [--theta-max-deg A] [--draws N] [--truncation] [--method NAME] [--json]\n"
             "  --min-time S        seconds per timed run after calibration (default 0.5)\n"
             "  --runs N            timed runs per method; the median is reported (default 5;\n"
             "                      ground truth uses min(N, 3))\n"
@@ -124,9 +128,63 @@ static void usage(FILE *f)
             "  --draws N           random slab states cycled through, a power of two <= 65536\n"
             "                      (default 256; more for a steadier mean when the cost varies)\n"
             "  --no-ground-truth   skip the 16384-sample reference (about 10 s)\n"
+            "  --truncation        no timing: the expansion's default (adaptive) result against order 8\n"
+            "                      on the draws, relative to the light of the orders it covers\n"
             "  --method NAME       only prepare, analytic and NAME (numeric-8, ground-truth, ...),\n"
             "                      e.g. to profile one method under perf\n"
             "  --json              {\"methods\":[{\"method\",\"ns_per_sample\",\"ratio_to_analytic\",...}]}\n");
+}
+
+/* Worst relative difference, per form (input s/p x output s/p, T and R) and band, between the
+ * expansion with default options and with every pair up to order 8, divided by the incoherent
+ * energy of the orders the expansion covers (reflection: without the direct reflection, which
+ * both include exactly). Split at theta = 70 deg. */
+static int truncation(const ctx *c, double theta_max_deg, int json)
+{
+    biref_expansion_opts adaptive, full;
+    biref_expansion_opts_default(&adaptive);
+    biref_expansion_opts_default(&full);
+    full.order = BIREF_EXPANSION_MAX_ORDER;
+    double worst[2] = {0, 0};
+    long over[2][3] = {{0}}, n[2] = {0, 0}; /* states with a worst error > 1e-3, 1e-2, 3e-2 */
+    for (int k = 0; k < c->pool; k++) {
+        biref_spectrum a, f;
+        if (biref_spectrum_expansion(c->sp, &c->state[k], &adaptive, &a) != BIREF_OK ||
+            biref_spectrum_expansion(c->sp, &c->state[k], &full, &f) != BIREF_OK)
+            return 1;
+        double w = 0;
+        for (int which = 0; which < 2; which++)
+            for (int i = 0; i < 2; i++)
+                for (int o = 0; o < 2; o++) {
+                    const double complex Ci[2][2] = {{i == 0, 0}, {0, i == 1}}, Po[2][2] = {{o == 0, 0}, {0, o == 1}};
+                    double covered[3];
+                    biref_expansion_tail(c->sp, &c->state[k], which, Ci, Po, which == BIREF_TRANSMISSION ? -1 : 0,
+                                         covered);
+                    const double *x = which ? a.R[i][o] : a.T[i][o], *y = which ? f.R[i][o] : f.T[i][o];
+                    for (int j = 0; j < 3; j++) w = fmax(w, fabs(x[j] - y[j]) / covered[j]);
+                }
+        int r = c->theta[k] >= 70.0 * M_PI / 180.0;
+        n[r]++;
+        worst[r] = fmax(worst[r], w);
+        over[r][0] += w > 1e-3, over[r][1] += w > 1e-2, over[r][2] += w > 3e-2;
+    }
+    static const char *const RANGE[2] = {"0-70", "70-max"};
+    if (json) {
+        printf("{\"benchmark\":\"bench_spectral\",\"truncation\":[");
+        for (int r = 0; r < 2; r++)
+            printf("%s{\"theta_deg\":\"%s\",\"states\":%ld,\"worst_relative\":%.6g,\"over_1e-3\":%ld,"
+                   "\"over_1e-2\":%ld,\"over_3e-2\":%ld}",
+                   r ? "," : "", RANGE[r], n[r], worst[r], over[r][0], over[r][1], over[r][2]);
+        printf("],\"theta_max_deg\":%g,\"pool\":%d}\n", theta_max_deg, c->pool);
+        return 0;
+    }
+    printf("bench_spectral --truncation: expansion, default options vs order %d, %d draws, theta 0-%g deg\n",
+           BIREF_EXPANSION_MAX_ORDER, c->pool, theta_max_deg);
+    printf("  theta range  states  worst relative error  states > 1e-3  > 1e-2  > 3e-2\n");
+    for (int r = 0; r < 2; r++)
+        printf("  %-11s %7ld  %20.4g  %13ld  %6ld  %6ld\n", RANGE[r], n[r], worst[r], over[r][0], over[r][1],
+               over[r][2]);
+    return 0;
 }
 
 typedef struct {
@@ -141,7 +199,7 @@ int main(int argc, char **argv)
 {
     bench_common_opts common;
     bench_common_defaults(&common);
-    int json = 0, ground_truth = 1;
+    int json = 0, ground_truth = 1, truncation_only = 0;
     const char *only = NULL; /* --method: measure prepare, analytic and this one (for profiling) */
     double theta_max_deg = 70.0;
     int pool = POOL_DEFAULT;
@@ -171,6 +229,8 @@ int main(int argc, char **argv)
                 return 2;
             }
             i++;
+        } else if (!strcmp(a, "--truncation")) {
+            truncation_only = 1;
         } else if (!strcmp(a, "--no-ground-truth")) {
             ground_truth = 0;
         } else if (!strcmp(a, "--json")) {
@@ -221,6 +281,15 @@ int main(int argc, char **argv)
             fprintf(stderr, "bench_spectral: input %d rejected by biref_slab_prepare\n", k);
             return 1;
         }
+    if (truncation_only) {
+        int rc = truncation(c, theta_max_deg, json);
+        free(c->state);
+        free(c->slab);
+        free(c->theta);
+        free(c);
+        biref_spectral_destroy(sp);
+        return rc;
+    }
 
     /* Rows 0 (prepare) and 1 (analytic) are always measured: every ratio refers to row 1. */
     row rows[] = {

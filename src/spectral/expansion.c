@@ -600,8 +600,8 @@ static expansion_orders choose_orders(phase_cache *pc, const biref_slab_state *s
     }
     /* At most two orders of own intensities beyond the interfering ones: they carry most of the
      * tail (it falls by the round-trip reflectance per order), and the amplitude recursion costs
-     * ~ order^3 (fig. 9 sweep, 70-85 deg: worst relative error 0.11 with none, 0.035 with two,
-     * 0.008 without the limit, at 1.35x the cost of the limited rule; docs/PHYSICS.md §5). */
+     * ~ order^3 (bench_spectral --truncation, 70-85 deg: worst relative error 0.18 with none,
+     * 0.045 with two, 0.0068 without the limit at 1.2x the cost; docs/PHYSICS.md §5). */
     if (r.groups > r.pairs + 2) r.groups = r.pairs + 2;
     if (r.groups < r.pairs) r.groups = r.pairs;
     return r;

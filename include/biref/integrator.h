@@ -30,9 +30,13 @@ typedef enum {
     BIREF_SIDE_BOTH = 3
 } biref_sides;
 
+/* The numeric plan holds two arrays of this many entries. */
+#define BIREF_NUMERIC_MAX_SAMPLES (1 << 24)
+
 typedef struct {
     biref_method method;            /* default BIREF_METHOD_ANALYTIC */
-    int samples;                    /* BIREF_METHOD_NUMERIC: midpoint samples, 1..65536 (default 64) */
+    int samples;                    /* BIREF_METHOD_NUMERIC: midpoint samples, 1..BIREF_NUMERIC_MAX_SAMPLES
+                                       (default 64) */
     biref_expansion_opts expansion; /* BIREF_METHOD_EXPANSION (default biref_expansion_opts_default) */
 } biref_integrator_options;
 

@@ -73,7 +73,7 @@ static biref_status check_options(const biref_integrator_options *o)
     case BIREF_METHOD_ANALYTIC:
     case BIREF_METHOD_GROUND_TRUTH: return BIREF_OK;
     case BIREF_METHOD_NUMERIC:
-        return o->samples >= 1 && o->samples <= 4 * BIREF_GROUND_TRUTH_SAMPLES ? BIREF_OK : BIREF_ERR_INVALID;
+        return o->samples >= 1 && o->samples <= BIREF_NUMERIC_MAX_SAMPLES ? BIREF_OK : BIREF_ERR_INVALID;
     case BIREF_METHOD_EXPANSION: {
         const biref_expansion_opts *x = &o->expansion;
         if (x->order > BIREF_EXPANSION_MAX_ORDER || x->order < -1) return BIREF_ERR_INVALID;

@@ -40,18 +40,18 @@ typedef struct {
     biref_expansion_opts expansion; /* BIREF_METHOD_EXPANSION (default biref_expansion_opts_default) */
 } biref_integrator_options;
 
-void biref_integrator_options_default(biref_integrator_options *o);
+BIREF_API void biref_integrator_options_default(biref_integrator_options *o);
 
 typedef struct biref_integrator biref_integrator;
 
 /* BIREF_ERR_INVALID for an unknown method, samples out of range or expansion options out of
  * their domain (order > BIREF_EXPANSION_MAX_ORDER; adaptive with tolerance outside (0, 1)). */
-biref_status biref_integrator_create(const biref_spectral *sp, const biref_integrator_options *o,
+BIREF_API biref_status biref_integrator_create(const biref_spectral *sp, const biref_integrator_options *o,
                                      biref_integrator **out);
-void biref_integrator_destroy(biref_integrator *it);
-biref_method biref_integrator_method(const biref_integrator *it);
+BIREF_API void biref_integrator_destroy(biref_integrator *it);
+BIREF_API biref_method biref_integrator_method(const biref_integrator *it);
 /* Samples per integral of the numeric methods (ground truth: BIREF_GROUND_TRUTH_SAMPLES), 0 else. */
-int biref_integrator_samples(const biref_integrator *it);
+BIREF_API int biref_integrator_samples(const biref_integrator *it);
 
 typedef struct {
     double T[3], R[3];   /* band-normalised XYZ; only the requested sides are written */
@@ -62,19 +62,19 @@ typedef struct {
  * light the method cannot handle (the analytic method takes the paper's s/p model only) or no
  * side; BIREF_ERR_ILLCOND where the method breaks down or the result is not finite (the caller
  * decides what to show). No allocation; the expansion needs about 250 KB of stack. */
-biref_status biref_integrate(const biref_integrator *it, const biref_slab_state *st, biref_sides sides,
+BIREF_API biref_status biref_integrate(const biref_integrator *it, const biref_slab_state *st, biref_sides sides,
                              const biref_light *light, biref_integration *out);
 
 /* The same for n slab states: one light for all (light_stride 0) or one per state (1). out[i]
  * and, when not NULL, status[i] per state; returns BIREF_OK or the first failure's status. */
-biref_status biref_integrate_batch(const biref_integrator *it, const biref_slab_state *states, size_t n,
+BIREF_API biref_status biref_integrate_batch(const biref_integrator *it, const biref_slab_state *states, size_t n,
                                    biref_sides sides, const biref_light *lights, size_t light_stride,
                                    biref_integration *out, biref_status *status);
 
 /* All four s/p input/output pair intensities of transmission and reflection (the paper's
  * quantities, eq. 17), from which any light of the paper's model mixes (biref_light_mix).
  * Returns the method's status; the values are not checked for finiteness. */
-biref_status biref_integrate_spectrum(const biref_integrator *it, const biref_slab_state *st, biref_spectrum *out);
+BIREF_API biref_status biref_integrate_spectrum(const biref_integrator *it, const biref_slab_state *st, biref_spectrum *out);
 
 #ifdef __cplusplus
 }

@@ -21,5 +21,6 @@
 #include "biref/integrator.h"
 #include "biref/render.h"
 #include "biref/photoelastic.h"
+#include "biref/shading.h"
 
 #endif /* BIREF_BIREF_H */

@@ -3,7 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "biref/gl.h"
+#include "gl_context.h"
 
 int cli_parse_backend(const char *cmd, const char *text, int *gl)
 {
@@ -13,24 +13,24 @@ int cli_parse_backend(const char *cmd, const char *text, int *gl)
     return 0;
 }
 
-static int open_gl(const char *cmd, biref_gl **g)
+static int open_gl(const char *cmd, gl_context **g)
 {
     char msg[400];
-    if (biref_gl_create(g, msg, sizeof msg) != BIREF_OK) return cli_error(cmd, "--backend gl: %s", msg), CLI_EXIT_FAIL;
+    if (gl_context_create(g, msg, sizeof msg) != BIREF_OK) return cli_error(cmd, "--backend gl: %s", msg), CLI_EXIT_FAIL;
     return 0;
 }
 
 int cli_gl_render(const char *cmd, const biref_scene *scene, float *xyz, biref_render_stats *stats, double *gpu_ms)
 {
-    biref_gl *g = NULL;
+    gl_context *g = NULL;
     int rc = open_gl(cmd, &g);
     if (rc) return rc;
     char msg[400];
-    if (biref_gl_render(g, scene, xyz, gpu_ms, stats, msg, sizeof msg) != BIREF_OK) {
+    if (gl_context_render(g, scene, xyz, gpu_ms, stats, msg, sizeof msg) != BIREF_OK) {
         cli_error(cmd, "--backend gl: %s", msg);
         rc = CLI_EXIT_FAIL;
     }
-    biref_gl_destroy(g);
+    gl_context_destroy(g);
     return rc;
 }
 
@@ -43,10 +43,10 @@ static int cmp_double(const void *a, const void *b)
 int cli_gl_bench(const char *cmd, const biref_scene *scene, int frames, double *gpu_ms, double *wall_ms, char *device,
                  size_t device_len)
 {
-    biref_gl *g = NULL;
+    gl_context *g = NULL;
     int rc = open_gl(cmd, &g);
     if (rc) return rc;
-    snprintf(device, device_len, "%s", biref_gl_description(g));
+    snprintf(device, device_len, "%s", gl_context_description(g));
     float *xyz = malloc((size_t)scene->camera.width * scene->camera.height * 3 * sizeof *xyz);
     double *gpu = malloc((size_t)(frames + 1) * sizeof *gpu), *wall = malloc((size_t)(frames + 1) * sizeof *wall);
     char msg[400];
@@ -56,7 +56,7 @@ int cli_gl_bench(const char *cmd, const biref_scene *scene, int frames, double *
     }
     for (int i = 0; i <= frames && !rc; i++) {
         double t0 = biref_wall_seconds();
-        if (biref_gl_render(g, scene, xyz, &gpu[i], NULL, msg, sizeof msg) != BIREF_OK) {
+        if (gl_context_render(g, scene, xyz, &gpu[i], NULL, msg, sizeof msg) != BIREF_OK) {
             cli_error(cmd, "--backend gl: %s", msg);
             rc = CLI_EXIT_FAIL;
         }
@@ -72,6 +72,6 @@ int cli_gl_bench(const char *cmd, const biref_scene *scene, int frames, double *
     free(xyz);
     free(gpu);
     free(wall);
-    biref_gl_destroy(g);
+    gl_context_destroy(g);
     return rc;
 }

@@ -19,5 +19,6 @@
 #include "biref/spectral.h"
 #include "biref/render.h"
 #include "biref/photoelastic.h"
+#include "biref/gpu.h"
 
 #endif /* BIREF_BIREF_H */

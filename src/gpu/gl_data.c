@@ -4,7 +4,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "biref/gl.h"
+#include "biref/gpu.h"
 #include "render/vec3.h"
 #include "spectral/spectral_internal.h"
 

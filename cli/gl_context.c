@@ -9,7 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "biref/gl.h"
+#include "biref/gpu.h"
+#include "gl_context.h"
 
 /* Array sizes compiled into the native shader: the scene format's own limits. */
 #define GL_MAX_SLABS BIREF_SCENE_MAX_SLABS
@@ -17,7 +18,7 @@
 /* Rows per draw call: keeps each submission short on drivers with a watchdog. */
 #define BAND_ROWS 256
 
-struct biref_gl {
+struct gl_context {
     EGLDisplay dpy;
     EGLContext ctx;
     EGLSurface surf;
@@ -57,7 +58,7 @@ static GLuint compile(GLenum type, const char *defines, char *msg, size_t msg_le
     return sh;
 }
 
-static biref_status build_program(biref_gl *g, char *msg, size_t msg_len)
+static biref_status build_program(gl_context *g, char *msg, size_t msg_len)
 {
     char defs[160];
     snprintf(defs, sizeof defs, "#define BIREF_FRAGMENT\n#define BIREF_SCENE\n#define BIREF_MAX_SLABS %d\n#define BIREF_MAX_PANELS %d\n",
@@ -87,7 +88,7 @@ static biref_status build_program(biref_gl *g, char *msg, size_t msg_len)
     return BIREF_OK;
 }
 
-static biref_status upload_table(biref_gl *g, char *msg, size_t msg_len)
+static biref_status upload_table(gl_context *g, char *msg, size_t msg_len)
 {
     if (biref_spectral_create(NULL, &g->sp) != BIREF_OK) return fail(msg, msg_len, "cannot build the look-up table");
     biref_gl_table_info info;
@@ -124,14 +125,14 @@ static EGLDisplay open_display(void)
     return dpy;
 }
 
-biref_status biref_gl_create(biref_gl **out, char *msg, size_t msg_len)
+biref_status gl_context_create(gl_context **out, char *msg, size_t msg_len)
 {
     *out = NULL;
     /* libepoxy aborts the process when it cannot load libEGL: look first. */
     void *egl = dlopen("libEGL.so.1", RTLD_LAZY | RTLD_LOCAL);
     if (!egl) return fail(msg, msg_len, "no EGL library (libEGL.so.1) on this machine: the gl back-end needs EGL and OpenGL >= 4.3");
     dlclose(egl);
-    biref_gl *g = calloc(1, sizeof *g);
+    gl_context *g = calloc(1, sizeof *g);
     if (!g) return fail(msg, msg_len, "out of memory");
     g->dpy = open_display();
     if (g->dpy == EGL_NO_DISPLAY) {
@@ -177,11 +178,11 @@ biref_status biref_gl_create(biref_gl **out, char *msg, size_t msg_len)
     *out = g;
     return BIREF_OK;
 out:
-    biref_gl_destroy(g);
+    gl_context_destroy(g);
     return s;
 }
 
-void biref_gl_destroy(biref_gl *g)
+void gl_context_destroy(gl_context *g)
 {
     if (!g) return;
     if (g->ctx != EGL_NO_CONTEXT && g->ctx) {
@@ -200,7 +201,7 @@ void biref_gl_destroy(biref_gl *g)
     free(g);
 }
 
-const char *biref_gl_description(const biref_gl *g) { return g->desc; }
+const char *gl_context_description(const gl_context *g) { return g->desc; }
 
 static void set_uniform(void *user, const char *name, int comps, int count, const float *v)
 {
@@ -214,7 +215,7 @@ static void set_uniform(void *user, const char *name, int comps, int count, cons
     }
 }
 
-biref_status biref_gl_render(biref_gl *g, const biref_scene *scene, float *xyz, double *gpu_ms,
+biref_status gl_context_render(gl_context *g, const biref_scene *scene, float *xyz, double *gpu_ms,
                              biref_render_stats *stats, char *msg, size_t msg_len)
 {
     const int W = scene->camera.width, H = scene->camera.height;

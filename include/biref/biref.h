@@ -19,6 +19,7 @@
 #include "biref/spectral.h"
 #include "biref/render.h"
 #include "biref/photoelastic.h"
+#include "biref/shading.h"
 #include "biref/gpu.h"
 
 #endif /* BIREF_BIREF_H */

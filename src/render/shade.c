@@ -11,8 +11,6 @@
 
 /* Rays leave surfaces from exactly on them; hits closer than this are the surface itself. */
 #define RAY_EPS 1e-9
-/* biref_slab_prepare needs theta < pi/2; a ray grazing the slab is clamped just below. */
-#define THETA_MAX (0.5 * M_PI - 1e-7)
 
 void render_env_init(render_env *e, const biref_environment *env)
 {
@@ -201,6 +199,19 @@ static double background_factor(const biref_renderer *r, const double k[3], cons
     return passthrough(C, P);
 }
 
+int render_shade_hit(const biref_renderer *r, const biref_hit_frames *f, double T_xyz[3], double R_xyz[3])
+{
+    /* One optics set-up per hit: the reflection frame is the transmission frame rotated by 180
+     * degrees about z, i.e. the same slab lit from the other face (biref_slab_state_flip). */
+    double k_refl_in[3];
+    v3_scale(f->mirror, -1.0, k_refl_in);
+    biref_slab_state stT, stR;
+    if (biref_slab_prepare(&f->slab, f->theta, &stT) != BIREF_OK) return 1;
+    biref_slab_state_flip(&stT, &stR);
+    return eval_slab(r, &stT, f->x_T, f->k_view, f->k_view, BIREF_TRANSMISSION, T_xyz) ||
+           eval_slab(r, &stR, f->x_R, k_refl_in, f->k_view, BIREF_REFLECTION, R_xyz);
+}
+
 int render_shade_pixel(const biref_renderer *r, const double dir[3], double xyz[3], int *fallback)
 {
     *fallback = 0;
@@ -235,39 +246,13 @@ int render_shade_pixel(const biref_renderer *r, const double dir[3], double xyz[
 
     double hp[3];
     v3_axpy(o, best, dir, hp);
-    double dn = v3_dot(dir, hit->normal);
-    double theta = acos(fmin(1.0, fabs(dn)));
-    if (theta > THETA_MAX) theta = THETA_MAX;
-    /* Paper frame of this ray. Transmission: y = normal pointing away from the camera
-     * (towards the light behind), z = tangential part of the view ray, x = y x z. The
-     * reflection frame has y towards the camera and the same z, hence x_R = -x_T. */
-    double yT[3], z[3], xT[3], xR[3];
-    v3_scale(hit->normal, dn < 0 ? -1.0 : 1.0, yT);
-    v3_axpy(dir, -dn, hit->normal, z);
-    if (v3_normalize(z, z) < 1e-9) memcpy(z, hit->tangent, sizeof z);
-    v3_cross(yT, z, xT);
-    v3_scale(xT, -1.0, xR);
-
-    double mirror[3]; /* direction towards the light that reflects into the eye */
-    v3_axpy(dir, -2.0 * dn, hit->normal, mirror);
+    biref_hit_frames fr;
+    render_hit_frames(hit->normal, hit->tangent, hit->axis_world, &hit->base, dir, &fr);
+    const double *xR = fr.x_R, *mirror = fr.mirror;
     double k_refl_in[3];
     v3_scale(mirror, -1.0, k_refl_in);
-
-    /* One optics set-up per hit: the reflection frame is the transmission frame rotated by 180
-     * degrees about z, i.e. the same slab lit from the other face (biref_slab_state_flip). */
     double tT[3], tR[3];
-    biref_slab slab = hit->base;
-    slab.axis[0] = v3_dot(hit->axis_world, xT);
-    slab.axis[1] = v3_dot(hit->axis_world, yT);
-    slab.axis[2] = v3_dot(hit->axis_world, z);
-    biref_slab_state stT, stR;
-    int failT = 1, failR = 1;
-    if (biref_slab_prepare(&slab, theta, &stT) == BIREF_OK) {
-        biref_slab_state_flip(&stT, &stR);
-        failT = eval_slab(r, &stT, xT, k_view, k_view, BIREF_TRANSMISSION, tT);
-        failR = eval_slab(r, &stR, xR, k_refl_in, k_view, BIREF_REFLECTION, tR);
-    }
-    if (failT || failR) {
+    if (render_shade_hit(r, &fr, tT, tR)) {
         /* A failed evaluation (grazing-angle breakdown) must not put a NaN in the image:
          * treat the slab as a perfect mirror seen through the filter. */
         *fallback = 1;

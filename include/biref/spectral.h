@@ -10,6 +10,7 @@
 #include "biref/color.h"
 #include "biref/common.h"
 #include "biref/optics.h"
+#include "biref/polarization.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -73,11 +74,6 @@ BIREF_API void biref_spectral_phase_integrals(const biref_spectral *sp, double o
 BIREF_API void biref_spectral_phase_integrals_direct(const biref_spectral *sp, double opd_nm, double cos_int[3],
                                                      double sin_int[3]);
 
-/* Polarisation mixing of a spectrum for the paper's light model: incident light with
- * fractions w_in[s], w_in[p] (incoherent), detected through an analyzer passing
- * out_mask[s], out_mask[p] (1 = pass, 0 = block). xyz = sum w_in[i] out_mask[j] X[i][j]. */
-BIREF_API void biref_spectrum_mix(const double X[2][2][3], const double w_in[2], const double out_mask[2], double xyz[3]);
-
 /* General polarisation for numeric integration: incident coherency matrix C (s/p basis of the
  * incident wave, C[i][j] = <e_i conj(e_j)>, trace = incident intensity) and analyzer Jones
  * matrix P ([in][out] in the s/p basis of the outgoing wave; NULL = no analyzer). Detected
@@ -90,17 +86,7 @@ BIREF_API void biref_spectrum_numeric_polarized(const biref_numeric_plan *plan, 
 /* Polarisation states and the exact path-group expansion (beyond the paper)  */
 /* ------------------------------------------------------------------------- */
 
-/* Coherency matrix C[i][j] = <e_i conj(e_j)> in the s/p basis of a wave from Stokes parameters
- * (S0 intensity, S1 = |e_s|^2 - |e_p|^2, S2 = 2 Re(e_s conj e_p), S3 = -2 Im(e_s conj e_p)):
- * S3 > 0 for e = (1, i)/sqrt2, whose field turns from s towards p (docs/CONVENTIONS.md).
- * BIREF_ERR_INVALID unless S0 >= 0 and S1^2 + S2^2 + S3^2 <= S0^2 (physical light). */
-BIREF_API biref_status biref_stokes_to_coherency(const double stokes[4], biref_complex C[2][2]);
-
-/* Analyzers as Jones matrices [in][out] in the s/p basis of the outgoing wave: projection onto
- * the unit Jones vector u, P[k][o] = conj(u_k) u_o. Linear at angle psi from s towards p;
- * circular with handedness +1 (u = (1, i)/sqrt2, S3 = +1) or -1. */
-BIREF_API void biref_analyzer_linear(double psi_rad, biref_complex P[2][2]);
-BIREF_API void biref_analyzer_circular(int handedness, biref_complex P[2][2]);
+/* Stokes vectors, coherency matrices and analyzers: polarization.h. */
 
 #define BIREF_EXPANSION_MAX_ORDER 8
 

@@ -5,6 +5,7 @@
 
 #include <complex.h>
 
+#include "biref/integrator.h"
 #include "biref/render.h"
 #include "biref/shading.h"
 
@@ -49,8 +50,9 @@ struct biref_renderer {
     biref_filter filter;
     int world_fixed;
     double w_in[2], mask[2]; /* s/p light fractions and analyzer mask (paper's model) */
+    biref_light light;       /* the same as a light, for rays that are not world-fixed */
     biref_spectral *sp;
-    biref_numeric_plan *plan; /* numeric and ground truth */
+    biref_integrator *integrator;
 };
 
 /* camera.c */

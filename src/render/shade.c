@@ -6,8 +6,6 @@
 
 #include "render/render_internal.h"
 #include "render/vec3.h"
-/* biref_analytic_terms: the analytic integral for one direction (T or R) only. */
-#include "spectral/spectral_internal.h"
 
 /* Rays leave surfaces from exactly on them; hits closer than this are the surface itself. */
 #define RAY_EPS 1e-9
@@ -133,52 +131,32 @@ static double passthrough(const double C[2][2], const double P[2][2])
 static int eval_slab(const biref_renderer *r, const biref_slab_state *st, const double x[3], const double k_in[3],
                      const double k_out[3], int which, double xyz[3])
 {
-    if (r->opt.method == BIREF_METHOD_ANALYTIC) {
-        /* Only one of T and R is needed per evaluation, so call the per-direction terms
-         * (eq. 25: S = E + 2H) rather than biref_spectrum_analytic, which computes both and
-         * would double the cost of the dominant part of the pixel. */
-        double E[2][2][3], H[2][2][3], X[2][2][3];
-        biref_analytic_terms(r->sp, st, which, E, H);
-        for (int i = 0; i < 2; i++)
-            for (int o = 0; o < 2; o++)
-                for (int j = 0; j < 3; j++) X[i][o][j] = E[i][o][j] + 2.0 * H[i][o][j];
-        biref_spectrum_mix(X, r->w_in, r->mask, xyz);
-    } else {
-        /* Numeric methods and the expansion go through the polarized integrators even for the
-         * paper's s/p model: they evaluate only the direction needed (T or R), and a diagonal C
-         * and P give exactly biref_spectrum_mix's sum. s = x for both waves (s is the frame's
-         * x), p = k x s. */
-        double Cr[2][2], Pr[2][2];
-        if (r->world_fixed) {
-            double p_in[3], p_out[3];
-            v3_cross(k_in, x, p_in);
-            v3_cross(k_out, x, p_out);
-            light_coherency(r, x, p_in, Cr);
-            analyzer(r, x, p_out, Pr);
-        } else {
-            Cr[0][0] = r->w_in[0];
-            Cr[1][1] = r->w_in[1];
-            Cr[0][1] = Cr[1][0] = 0.0;
-            Pr[0][0] = r->mask[0];
-            Pr[1][1] = r->mask[1];
-            Pr[0][1] = Pr[1][0] = 0.0;
-        }
+    const biref_light *l = &r->light;
+    biref_light ray_light;
+    if (r->world_fixed) {
+        /* A world-fixed polarizer or analyzer has its own matrices in every ray's basis: s = x
+         * for both waves (s is the frame's x), p = k x s. */
+        double p_in[3], p_out[3], Cr[2][2], Pr[2][2];
+        v3_cross(k_in, x, p_in);
+        v3_cross(k_out, x, p_out);
+        light_coherency(r, x, p_in, Cr);
+        analyzer(r, x, p_out, Pr);
         double complex C[2][2], P[2][2];
         for (int i = 0; i < 2; i++)
             for (int j = 0; j < 2; j++) {
                 C[i][j] = Cr[i][j];
                 P[i][j] = Pr[i][j];
             }
-        const double complex(*Pp)[2] = r->filter.type == BIREF_FILTER_NONE ? NULL : (const double complex(*)[2])P;
-        if (r->opt.method == BIREF_METHOD_EXPANSION) {
-            if (biref_spectrum_expansion_polarized(r->sp, st, which, (const double complex(*)[2])C, Pp,
-                                                   &r->opt.expansion, xyz, NULL) != BIREF_OK)
-                return 1;
-        } else {
-            biref_spectrum_numeric_polarized(r->plan, st, which, (const double complex(*)[2])C, Pp, xyz);
-        }
+        biref_light_coherency((const double complex(*)[2])C, &ray_light);
+        biref_light_set_analyzer(&ray_light,
+                                 r->filter.type == BIREF_FILTER_NONE ? NULL : (const double complex(*)[2])P);
+        l = &ray_light;
     }
-    return !(isfinite(xyz[0]) && isfinite(xyz[1]) && isfinite(xyz[2]));
+    const biref_sides side = which == BIREF_REFLECTION ? BIREF_SIDE_REFLECTION : BIREF_SIDE_TRANSMISSION;
+    biref_integration res;
+    if (biref_integrate(r->integrator, st, side, l, &res) != BIREF_OK) return 1;
+    memcpy(xyz, which == BIREF_REFLECTION ? res.R : res.T, 3 * sizeof(double));
+    return 0;
 }
 
 /* The pass-through factor for a wave along k (no slab), in the basis whose s is

@@ -26,13 +26,13 @@ cd "$tmp/elsewhere"
 export PKG_CONFIG_PATH=$libdir/pkgconfig
 cc -std=c17 -Wall -Wextra -Werror "$src/examples/c/slab_colors.c" $(pkg-config --cflags --libs biref) \
   -Wl,-rpath,"$libdir" -o slab_colors
-ldd ./slab_colors | grep -q "$libdir/libbiref.so" || { echo "FAIL: slab_colors not linked to the installed libbiref.so" >&2; exit 1; }
+ldd ./slab_colors | grep "$libdir/libbiref.so" >/dev/null || { echo "FAIL: slab_colors not linked to the installed libbiref.so" >&2; exit 1; }
 ./slab_colors >c.json
 
 # C++ through find_package(biref) -> biref::biref.
 cmake -S "$src/examples/cpp" -B cpp -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_CXX_FLAGS="-Wall -Wextra -Werror" >/dev/null
 cmake --build cpp >/dev/null
-ldd cpp/shade_hit | grep -q "$libdir/libbiref.so" || { echo "FAIL: shade_hit not linked to the installed libbiref.so" >&2; exit 1; }
+ldd cpp/shade_hit | grep "$libdir/libbiref.so" >/dev/null || { echo "FAIL: shade_hit not linked to the installed libbiref.so" >&2; exit 1; }
 cpp/shade_hit >cpp.json
 
 /usr/bin/python3 - ref.json c.json cpp.json <<'PY'

@@ -56,6 +56,20 @@ print("ok: C (pkg-config) and C++ (find_package) programs agree with biref slab 
 sys.exit(fail)
 PY
 
+# Python: the package the install put where Debian's interpreter looks (here under the temporary
+# prefix, so on PYTHONPATH), finding the installed library on its own.
+pkgdir=$(dirname "$(dirname "$(find "$prefix" -path '*/biref/__init__.py' | head -n1)")")
+[ -d "$pkgdir" ] || { echo "FAIL: the Python package was not installed" >&2; exit 1; }
+env -u BIREF_LIBRARY -u BIREF_CDEF PYTHONPATH="$pkgdir" /usr/bin/python3 -c "
+import json, biref
+t = biref.slab(eta_o=1.775, eta_e=1.231, axis=(0.084, 0.979, -0.187), thickness_mm=1.15, theta_deg=30, lambda_nm=550)['T']
+ref = json.load(open('ref.json'))['T']
+assert biref.library_path.startswith('$prefix'), biref.library_path
+bad = [(i, o) for i in 'sp' for o in 'sp' if abs(t[i][o] - ref[i][o]) > 1e-12]
+assert not bad, (t, ref)
+print('ok: installed Python package agrees with biref slab --json')
+"
+
 # Commands that read example scenes work from any directory once installed.
 "$prefix/bin/biref" bench --width 32 --height 18 --max-seconds 0.05 --methods analytic >/dev/null
 "$prefix/bin/biref" render "$prefix/share/biref/examples/fig9a.json" --width 16 --height 9 -o img.png >/dev/null

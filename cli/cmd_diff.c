@@ -19,7 +19,7 @@ static void help(void)
            "  dE00 0 black, 1 blue (about the threshold of visibility), 2 green, 4 red, >= 8 white.\n\n"
            "Options:\n"
            "  -o, --output FILE    write the difference map (PNG)\n"
-           "  --json               {width, height, mean, p95, max, over_1, over_4} on stdout\n"
+           "  --json               {width, height, mean, p95, p99, max, over_1, over_4} on stdout\n"
            "                       (over_N: fraction of pixels with dE00 > N)\n"
            "  -h, --help           this help\n\n"
            "Both images must have the same size. Exit status 0 (whatever the difference), 1 on an\n"
@@ -125,6 +125,8 @@ int cmd_diff(int argc, char **argv)
     qsort(de, n, sizeof *de, cmp_double);
     size_t rank = (size_t)ceil(0.95 * (double)n);
     double p95 = de[rank > 0 ? rank - 1 : 0];
+    rank = (size_t)ceil(0.99 * (double)n);
+    double p99 = de[rank > 0 ? rank - 1 : 0];
     free(de);
     if (rc) return rc;
     if (json) {
@@ -133,6 +135,7 @@ int cmd_diff(int argc, char **argv)
         cJSON_AddNumberToObject(root, "height", ha);
         cJSON_AddNumberToObject(root, "mean", mean);
         cJSON_AddNumberToObject(root, "p95", p95);
+        cJSON_AddNumberToObject(root, "p99", p99);
         cJSON_AddNumberToObject(root, "max", max);
         cJSON_AddNumberToObject(root, "over_1", (double)over1 / (double)n);
         cJSON_AddNumberToObject(root, "over_4", (double)over4 / (double)n);

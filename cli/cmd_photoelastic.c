@@ -459,10 +459,7 @@ int cmd_photoelastic(int argc, char **argv)
     }
     double tint_rgb[3] = {io.tint[0], io.tint[1], io.tint[2]};
     for (int i = 0; i < 3; i++) io.tint[i] *= exposure;
-    if (out && cli_check_writable(CMD, out)) {
-        rc = CLI_EXIT_FAIL;
-        goto done;
-    }
+    if (out && (rc = cli_check_output(CMD, out, &grid_path, 1))) goto done;
     if (light == BIREF_PE_WHITE && biref_spectral_create(NULL, &sp) != BIREF_OK) {
         cli_error(CMD, "cannot create the spectral tables");
         rc = CLI_EXIT_FAIL;

@@ -44,7 +44,7 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
     biref_renderer *r = calloc(1, sizeof *r);
     if (!r) return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
     r->opt = *opt;
-    render_camera_init(&r->cam, &scene->camera);
+    biref_render_camera_init(&r->cam, &scene->camera);
     r->exposure = scene->camera.exposure;
     r->n_slabs = scene->n_slabs;
     for (int i = 0; i < scene->n_slabs; i++) {
@@ -78,7 +78,7 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
         p->half_h = 0.5 * in->size[1];
         biref_linear_srgb_to_xyz(in->radiance, p->radiance_xyz);
     }
-    render_env_init(&r->env, &scene->env);
+    biref_render_env_init(&r->env, &scene->env);
     r->pol = scene->polarization;
     r->filter = scene->filter;
     r->world_fixed = world_fixed;
@@ -139,8 +139,8 @@ biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_e
         for (int x = 0; x < W; x++) {
             double dir[3], c[3];
             int fb;
-            render_camera_ray(&r->cam, x, y, dir);
-            slab_pixels += render_shade_pixel(r, dir, c, &fb);
+            biref_render_camera_ray(&r->cam, x, y, dir);
+            slab_pixels += biref_render_shade_pixel(r, dir, c, &fb);
             fallbacks += fb;
             for (int i = 0; i < 3; i++) {
                 double v = c[i] * r->exposure;

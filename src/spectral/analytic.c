@@ -181,8 +181,42 @@ static void reflection(const biref_spectral *sp, const biref_slab_state *st, dou
     }
 }
 
-void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
-                          double H[2][2][3])
+/* Eq. 26 (and the truncated expansion) can leave [0, 1] where internal reflections are strong:
+ * it keeps some interference pairs and drops others, so its interference term carries energy,
+ * which the exact one never does (sum over outputs and directions of T + R = 1 at every
+ * wavelength, and of E alone too: every path's |a|^2 is its power fraction and an incoherent
+ * ray tree conserves power). Per input and band: (1) an excess of the sum over outputs (and
+ * directions) above 1 is removed in proportion to E; (2) X - E is scaled
+ * towards E, one factor per input for all bands, just enough to make every entry >= 0. E is
+ * physical by itself, so both steps always succeed. */
+void biref_physical_limit(const double (*const E[2])[2][3], double (*const X[2])[2][3], int n_dir)
+{
+    for (int i = 0; i < 2; i++) {
+        for (int j = 0; j < 3; j++) {
+            double se = 0.0, sx = 0.0;
+            for (int d = 0; d < n_dir; d++)
+                for (int o = 0; o < 2; o++) se += E[d][i][o][j], sx += X[d][i][o][j];
+            double excess = sx - 1.0;
+            if (!(excess > 0.0) || !(se > 0.0)) continue;
+            for (int d = 0; d < n_dir; d++)
+                for (int o = 0; o < 2; o++) X[d][i][o][j] -= excess * E[d][i][o][j] / se;
+        }
+        double s = 1.0;
+        for (int d = 0; d < n_dir; d++)
+            for (int o = 0; o < 2; o++)
+                for (int j = 0; j < 3; j++) {
+                    double e = E[d][i][o][j], x = X[d][i][o][j];
+                    if (x < 0.0) s = fmin(s, e > 0.0 ? e / (e - x) : 0.0);
+                }
+        if (s >= 1.0) continue;
+        for (int d = 0; d < n_dir; d++)
+            for (int o = 0; o < 2; o++)
+                for (int j = 0; j < 3; j++) X[d][i][o][j] = E[d][i][o][j] + s * (X[d][i][o][j] - E[d][i][o][j]);
+    }
+}
+
+void biref_analytic_paper_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
+                                double H[2][2][3])
 {
     if (which == BIREF_REFLECTION)
         reflection(sp, st, E, H);
@@ -190,14 +224,52 @@ void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, 
         transmission(sp, st, E, H);
 }
 
+void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
+                          double H[2][2][3])
+{
+    const biref_numeric_plan *coherent = biref_coherent_plan(sp, st);
+    if (coherent) {
+        /* Thin slab or evanescent coupling: eq. 26 does not hold; the exact integral of eq. 17
+         * (src/spectral/coherent.c) is returned as E with no interference term. */
+        biref_spectrum x;
+        biref_spectrum_numeric(coherent, st, &x);
+        memcpy(E, which == BIREF_REFLECTION ? x.R : x.T, sizeof x.T);
+        memset(H, 0, sizeof x.T);
+        return;
+    }
+    biref_analytic_paper_terms(sp, st, which, E, H);
+    /* Eq. 26 drops interference pairs (siblings, orders two apart) and can leave [0, 1] where
+     * internal reflections are strong: the interference term is scaled down just enough to keep
+     * the result physical (docs/ACCURACY.md). H is scaled, so E + 2H stays the result. */
+    double X[2][2][3];
+    for (int i = 0; i < 2; i++)
+        for (int o = 0; o < 2; o++)
+            for (int j = 0; j < 3; j++) X[i][o][j] = E[i][o][j] + 2.0 * H[i][o][j];
+    const double(*Ed[2])[2][3] = {(const double(*)[2][3])E, NULL};
+    double(*Xd[2])[2][3] = {X, NULL};
+    biref_physical_limit(Ed, Xd, 1);
+    for (int i = 0; i < 2; i++)
+        for (int o = 0; o < 2; o++)
+            for (int j = 0; j < 3; j++) H[i][o][j] = 0.5 * (X[i][o][j] - E[i][o][j]);
+}
+
 void biref_spectrum_analytic(const biref_spectral *sp, const biref_slab_state *st, biref_spectrum *out)
 {
-    double E[2][2][3], H[2][2][3];
+    const biref_numeric_plan *coherent = biref_coherent_plan(sp, st);
+    if (coherent) {
+        biref_spectrum_numeric(coherent, st, out);
+        return;
+    }
+    double E[2][2][2][3], H[2][2][2][3];
     for (int which = 0; which < 2; which++) {
-        biref_analytic_terms(sp, st, which, E, H);
+        biref_analytic_terms(sp, st, which, E[which], H[which]);
         double(*X)[2][3] = which == BIREF_REFLECTION ? out->R : out->T;
         for (int i = 0; i < 2; i++)
             for (int o = 0; o < 2; o++)
-                for (int j = 0; j < 3; j++) X[i][o][j] = E[i][o][j] + 2.0 * H[i][o][j]; /* eqs. 25-26 */
+                for (int j = 0; j < 3; j++) X[i][o][j] = E[which][i][o][j] + 2.0 * H[which][i][o][j]; /* eqs. 25-26 */
     }
+    /* Each direction is already limited on its own (biref_analytic_terms); T + R together too. */
+    const double(*Ed[2])[2][3] = {(const double(*)[2][3])E[0], (const double(*)[2][3])E[1]};
+    double(*Xd[2])[2][3] = {out->T, out->R};
+    biref_physical_limit(Ed, Xd, 2);
 }

@@ -719,9 +719,9 @@ void biref_expansion_tail(const biref_spectral *sp, const biref_slab_state *st, 
     tail_energy(&tm, 0, order, out);
 }
 
-biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
-                                                const double complex C[2][2], const double complex P[2][2],
-                                                const biref_expansion_opts *opts, double xyz[3], int *order_used)
+biref_status biref_expansion_series_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
+                                              const double complex C[2][2], const double complex P[2][2],
+                                              const biref_expansion_opts *opts, double xyz[3], int *order_used)
 {
     if (!sp || !st || !C || !xyz || (which != BIREF_TRANSMISSION && which != BIREF_REFLECTION)) return BIREF_ERR_INVALID;
     biref_expansion_opts def;
@@ -736,8 +736,8 @@ biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const 
     return BIREF_OK;
 }
 
-biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab_state *st,
-                                      const biref_expansion_opts *opts, biref_spectrum *out)
+biref_status biref_expansion_series(const biref_spectral *sp, const biref_slab_state *st,
+                                    const biref_expansion_opts *opts, biref_spectrum *out)
 {
     if (!sp || !st || !out) return BIREF_ERR_INVALID;
     biref_expansion_opts def;
@@ -772,5 +772,44 @@ biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab
         for (int i = 0; i < 2; i++)
             for (int o = 0; o < 2; o++) memcpy(X[i][o], res[2 * i + o], sizeof res[0]);
     }
+    return BIREF_OK;
+}
+
+/* Thin slabs and evanescent legs that couple the faces: the path series converges too slowly
+ * (or, with amplifying evanescent reflections, not at all) and its incoherent tail is wrong;
+ * the exact integral of eq. 17 instead (src/spectral/coherent.c). *order_used is 0 then. */
+biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
+                                                const double complex C[2][2], const double complex P[2][2],
+                                                const biref_expansion_opts *opts, double xyz[3], int *order_used)
+{
+    if (!sp || !st || !C || !xyz || (which != BIREF_TRANSMISSION && which != BIREF_REFLECTION)) return BIREF_ERR_INVALID;
+    const biref_numeric_plan *coherent = biref_coherent_plan(sp, st);
+    if (!coherent) return biref_expansion_series_polarized(sp, st, which, C, P, opts, xyz, order_used);
+    if (opts && !(opts->tolerance > 0.0) && opts->order < 0) return BIREF_ERR_INVALID;
+    biref_spectrum_numeric_polarized(coherent, st, which, C, P, xyz);
+    if (order_used) *order_used = 0;
+    return BIREF_OK;
+}
+
+biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab_state *st,
+                                      const biref_expansion_opts *opts, biref_spectrum *out)
+{
+    if (!sp || !st || !out) return BIREF_ERR_INVALID;
+    const biref_numeric_plan *coherent = biref_coherent_plan(sp, st);
+    if (!coherent) {
+        biref_status s = biref_expansion_series(sp, st, opts, out);
+        if (s != BIREF_OK) return s;
+        /* The truncated series and its incoherent tail can leave [0, 1] by up to ~1e-2 where
+         * internal reflections are strong (grazing incidence, high indices): the difference to
+         * the incoherent energies is scaled down just enough to stay physical. */
+        double E[2][2][2][3], H[2][2][2][3];
+        for (int which = 0; which < 2; which++) biref_analytic_paper_terms(sp, st, which, E[which], H[which]);
+        const double(*Ed[2])[2][3] = {(const double(*)[2][3])E[0], (const double(*)[2][3])E[1]};
+        double(*Xd[2])[2][3] = {out->T, out->R};
+        biref_physical_limit(Ed, Xd, 2);
+        return BIREF_OK;
+    }
+    if (opts && !(opts->tolerance > 0.0) && opts->order < 0) return BIREF_ERR_INVALID;
+    biref_spectrum_numeric(coherent, st, out);
     return BIREF_OK;
 }

@@ -8,6 +8,7 @@
 
 #include <omp.h>
 
+#include "cli_data.h"
 #include "cli_render.h"
 #include "commands.h"
 #include "json_out.h"
@@ -26,7 +27,8 @@ static void help(void)
            "to the full frame (reported as extrapolated; its frame time is then the sampled CPU\n"
            "time scaled to the frame and divided by the threads, as rows parallelise perfectly).\n\n"
            "Options:\n"
-           "  --scene FILE         scene (default examples/fig9a.json)\n"
+           "  --scene FILE         scene (default examples/fig9a.json; $BIREF_DATA_DIR or the installed copy\n"
+           "                       when not in the current directory)\n"
            "  --width W            frame width (default 1920)\n"
            "  --height H           frame height (default 1080)\n"
            "  --methods LIST       comma-separated: analytic, expansion, ground-truth, numeric-N\n"
@@ -127,7 +129,7 @@ int cmd_bench(int argc, char **argv)
                                              {"json", no_argument, 0, OPT_JSON},
                                              {"help", no_argument, 0, 'h'},
                                              {0, 0, 0, 0}};
-    const char *scene_path = "examples/fig9a.json", *methods = DEFAULT_METHODS;
+    const char *scene_path = NULL, *methods = DEFAULT_METHODS;
     long width = 1920, height = 1080, threads = 0;
     double max_seconds = 10.0;
     int json = 0;
@@ -161,6 +163,8 @@ int cmd_bench(int argc, char **argv)
     int n_methods = 0;
     if (parse_methods(methods, m, &n_methods)) return CLI_EXIT_USAGE;
     biref_scene scene;
+    char default_scene[4096];
+    if (!scene_path) scene_path = cli_data_path("examples/fig9a.json", default_scene, sizeof default_scene);
     int rc = cli_load_scene(CMD, scene_path, &scene);
     if (!rc) rc = cli_scene_resize(CMD, &scene, width, height);
     if (rc) return rc;

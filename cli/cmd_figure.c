@@ -13,6 +13,7 @@
 
 #include "biref/render.h"
 #include "cli_common.h"
+#include "cli_data.h"
 #include "commands.h"
 #include "fig_plot.h"
 
@@ -41,7 +42,8 @@ static void help(void)
            "  -o, --out DIR        output directory (created if missing; its parent must exist)\n"
            "  --quick              fewer samples and smaller images (seconds instead of minutes)\n"
            "  --threads T          OpenMP threads (default: all cores)\n"
-           "  --scenes DIR         where fig9a/b/c.json are (default: examples)\n"
+           "  --scenes DIR         where fig9a/b/c.json are (default: examples, from $BIREF_DATA_DIR\n"
+           "                       or the installed copy when not in the current directory)\n"
            "  -h, --help           this help\n");
 }
 
@@ -706,7 +708,7 @@ int cmd_figure(int argc, char **argv)
                                              {"help", no_argument, 0, 'h'},
                                              {0, 0, 0, 0}};
     fig_ctx c = {0};
-    const char *scenes = "examples";
+    const char *scenes = NULL;
     long v;
     opterr = 0;
     optind = 1;
@@ -727,6 +729,8 @@ int cmd_figure(int argc, char **argv)
     if (optind >= argc) return cli_error(CMD, "missing figure name (fig5, fig6c, fig7, fig9, table1 or all)"), CLI_EXIT_USAGE;
     if (optind + 1 < argc) return cli_error(CMD, "unexpected argument '%s'", argv[optind + 1]), CLI_EXIT_USAGE;
     const char *name = argv[optind];
+    char default_scenes[4096];
+    if (!scenes) scenes = cli_data_path("examples", default_scenes, sizeof default_scenes);
     static const char *const NAMES[] = {"fig5", "fig6c", "fig7", "fig9", "table1"};
     enum { NFIG = 5 };
     int sel[NFIG] = {0}, any = 0;

@@ -4,8 +4,8 @@
  * (modes, Fresnel coefficients) and one spectral integration giving the band-normalised XYZ of
  * all four input/output polarisation pairs in transmission and reflection (one biref_spectrum).
  * Every method runs on the same pool of slab states, in the same order, on the calling thread. */
-#ifndef BIREF_CLI_ACCURACY_COST_H
-#define BIREF_CLI_ACCURACY_COST_H
+#ifndef BIREF_TOOLS_ACCURACY_COST_H
+#define BIREF_TOOLS_ACCURACY_COST_H
 
 #include "biref/biref.h"
 

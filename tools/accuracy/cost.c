@@ -1,4 +1,4 @@
-/* Cost per shading sample (see accuracy_cost.h).
+/* Cost per shading sample (see cost.h).
  *
  * Method. A case is one loop over the pool (prepare only, a method on prepared states, or prepare
  * plus the method). Its iteration count is grown until one run lasts `min_time`; then `runs` runs
@@ -6,7 +6,7 @@
  * because on a shared machine the noise is one-sided (a preempted run is only ever slower). Each
  * run also reads the thread's CPU clock: a CPU/wall share well below 1 means another process took
  * the core during the run. Results feed a volatile sink so that no call can be optimised away. */
-#include "accuracy_cost.h"
+#include "cost.h"
 
 #include <complex.h>
 #include <math.h>

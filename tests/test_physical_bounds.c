@@ -91,7 +91,7 @@ int main(void)
     CHECK(biref_numeric_plan_create(sp, 32, &n32) == BIREF_OK);
     enum { M_ANALYTIC, M_EXPANSION, M_EXPANSION8, M_NUMERIC32, M_GT, N_M };
     static const char *const NAMES[N_M] = {"analytic", "expansion", "expansion order 8", "numeric-32", "ground truth"};
-    double worst[N_KINDS][N_M] = {{0}}, de_coherent[2] = {0, 0};
+    double worst[N_KINDS][N_M] = {{0}}, de_coherent[2] = {0, 0}, worst_polarized = 0;
     int coherent_count = 0, evanescent_count = 0;
     test_rng rng = {20261123};
     for (int kind = 0; kind < N_KINDS; kind++)
@@ -122,6 +122,23 @@ int main(void)
                             s.thickness_nm, s.eta_i, theta * 180 / M_PI);
                 CHECK(v <= 1e-6);
             }
+            /* Any light and analyzer: the detected intensity of unit incident light lies in [0, 1]. */
+            double S[4], xyz[3];
+            double complex C[2][2], P[2][2];
+            test_random_stokes(&rng, S);
+            CHECK(biref_stokes_to_coherency(S, C) == BIREF_OK);
+            if (t % 2)
+                biref_analyzer_linear(test_uniform(&rng, 0, M_PI), P);
+            else
+                biref_analyzer_circular(t % 4 ? 1 : -1, P);
+            for (int which = 0; which < 2; which++) {
+                CHECK(biref_spectrum_expansion_polarized(sp, &st, which, (const double complex(*)[2])C,
+                                                         (const double complex(*)[2])P, NULL, xyz, NULL) == BIREF_OK);
+                for (int j = 0; j < 3; j++) {
+                    worst_polarized = fmax(worst_polarized, fmax(-xyz[j], xyz[j] - 1));
+                    CHECK(xyz[j] >= -1e-6 && xyz[j] <= 1 + 1e-6);
+                }
+            }
             /* Where the fast methods switch to the exact integral, both agree with the ground
              * truth (alias-free there: short optical paths). */
             if (biref_coherent_plan(sp, &st)) {
@@ -138,6 +155,7 @@ int main(void)
         for (int m = 0; m < N_M; m++) printf(" %18.3g", worst[kind][m]);
         printf("\n");
     }
+    printf("expansion, random Stokes input and analyzer: largest violation of 0 <= I <= 1: %.3g\n", worst_polarized);
     printf("coherent regime (%d of %d slabs, %d with evanescent modes): dE00 vs ground truth, analytic %.3g, "
            "expansion %.3g\n",
            coherent_count, N_KINDS * per_kind, evanescent_count, de_coherent[0], de_coherent[1]);

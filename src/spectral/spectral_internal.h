@@ -45,10 +45,10 @@ struct biref_numeric_plan {
 void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
                           double H[2][2][3]);
 
-/* Scales X - E towards E (X = E + s (X - E), one s in [0, 1] per input, the largest that keeps
- * every entry >= 0 and the sum over outputs and directions <= 1 per band), for n_dir = 1 or 2
- * directions [direction][in][out][band]. E must be the incoherent path energies (physical). */
-void biref_physical_limit(const double (*const E[2])[2][3], double (*const X[2])[2][3], int n_dir);
+/* Makes a result X [direction T/R][in][out][band] physical given the incoherent path energies E
+ * (src/spectral/analytic.c): every entry >= 0 (X moved towards E where needed) and the sum over
+ * outputs and directions exactly 1 per input and band (energy balance of a lossless slab). */
+void biref_physical_limit(const double E[2][2][2][3], double X[2][2][2][3]);
 
 /* The paper's terms as printed (eqs. 20-26, m = 1), in every regime (tests of the formulas). */
 void biref_analytic_paper_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],

@@ -4,7 +4,8 @@ set -euo pipefail
 pkgs=(build-essential cmake pkg-config libpng-dev libcjson-dev liblapacke-dev liblapack-dev
       libblas-dev liblcms2-dev libcairo2-dev libplplot-dev
       plplot-driver-cairo
-      libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri)
+      libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
+      chromium glslang-tools python3)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

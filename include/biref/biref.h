@@ -22,5 +22,6 @@
 #include "biref/render.h"
 #include "biref/photoelastic.h"
 #include "biref/shading.h"
+#include "biref/gpu.h"
 
 #endif /* BIREF_BIREF_H */

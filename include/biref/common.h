@@ -17,7 +17,9 @@ typedef double _Complex biref_complex;
 
 /* Marks the public API. The library is built with hidden visibility, so only declarations
  * carrying BIREF_API are exported from the shared library. */
-#if defined(_WIN32) && defined(BIREF_SHARED_LIBRARY)
+#if defined(BIREF_API)
+/* defined by the user (e.g. empty, for tools that parse the declarations) */
+#elif defined(_WIN32) && defined(BIREF_SHARED_LIBRARY)
 #  if defined(BIREF_BUILDING_LIBRARY)
 #    define BIREF_API __declspec(dllexport)
 #  else

@@ -20,6 +20,7 @@
 #include <stddef.h>
 
 #include "biref/common.h"
+#include "biref/integrator.h"
 #include "biref/spectral.h"
 
 #ifdef __cplusplus
@@ -240,6 +241,16 @@ BIREF_API biref_status biref_pe_shade_oblique(const biref_pe_setup *s, const bir
 /* The same point by numeric spectral integration (white light only). */
 BIREF_API biref_status biref_pe_shade_numeric(const biref_pe_setup *s, const biref_numeric_plan *plan,
                                               const biref_pe_principal *p, double xyz[3]);
+
+/* The polariscope as a light (integrator.h): its coherency C and analyzer P. */
+BIREF_API void biref_pe_light(const biref_pe_polariscope *pol, biref_light *out);
+
+/* White light through any integrator, at normal incidence (theta 0: biref_pe_slab_at, the model
+ * of biref_pe_shade_general and biref_pe_shade_numeric) or oblique (biref_pe_slab_best, as
+ * biref_pe_shade_oblique). The analytic method refuses a polariscope's light (it handles the
+ * paper's s/p model only). BIREF_ERR_INVALID for monochromatic light. */
+BIREF_API biref_status biref_pe_shade_integrated(const biref_pe_setup *s, const biref_integrator *it,
+                                                 const biref_pe_principal *p, double theta_rad, double xyz[3]);
 
 /* ------------------------------------------------------------------------ */
 /* Pictures                                                                  */

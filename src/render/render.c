@@ -94,11 +94,16 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
 
     biref_spectral_config cfg;
     biref_spectral_config_default(&cfg);
-    s = biref_spectral_create(&cfg, &r->sp);
-    if (!s && opt->method != BIREF_METHOD_ANALYTIC && opt->method != BIREF_METHOD_EXPANSION)
-        s = biref_numeric_plan_create(r->sp, opt->method == BIREF_METHOD_GROUND_TRUTH ? BIREF_GROUND_TRUTH_SAMPLES
-                                                                                       : opt->samples,
-                                      &r->plan);
+    s = biref_light_sp(r->w_in, r->mask, &r->light);
+    if (!s) s = biref_spectral_create(&cfg, &r->sp);
+    if (!s) {
+        biref_integrator_options io;
+        biref_integrator_options_default(&io);
+        io.method = opt->method;
+        io.samples = opt->samples;
+        io.expansion = opt->expansion;
+        s = biref_integrator_create(r->sp, &io, &r->integrator);
+    }
     if (s) {
         char text[120];
         snprintf(text, sizeof text, "cannot set up the spectral integration: %s", biref_status_string(s));
@@ -112,7 +117,7 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
 void biref_renderer_destroy(biref_renderer *r)
 {
     if (!r) return;
-    biref_numeric_plan_destroy(r->plan);
+    biref_integrator_destroy(r->integrator);
     biref_spectral_destroy(r->sp);
     free(r);
 }

@@ -5,7 +5,9 @@
 
 #include <complex.h>
 
+#include "biref/integrator.h"
 #include "biref/render.h"
+#include "biref/shading.h"
 
 typedef struct {
     double origin[3];
@@ -48,8 +50,9 @@ struct biref_renderer {
     biref_filter filter;
     int world_fixed;
     double w_in[2], mask[2]; /* s/p light fractions and analyzer mask (paper's model) */
+    biref_light light;       /* the same as a light, for rays that are not world-fixed */
     biref_spectral *sp;
-    biref_numeric_plan *plan; /* numeric and ground truth */
+    biref_integrator *integrator;
 };
 
 /* camera.c */
@@ -66,5 +69,13 @@ void render_radiance(const biref_renderer *r, const double from[3], const double
  * background. Returns 1 if a slab was hit, and sets *fallback when a slab evaluation
  * failed and the fallback was used. */
 int render_shade_pixel(const biref_renderer *r, const double dir[3], double xyz[3], int *fallback);
+/* The slab's two evaluations at one hit (transmission from behind, reflection from the mirror
+ * direction) in the hit's frames; non-zero when either fails (outputs then undefined). */
+int render_shade_hit(const biref_renderer *r, const biref_hit_frames *f, double T_xyz[3], double R_xyz[3]);
+
+/* hit_frames.c: the paper's frames of the unit view ray dir at a hit on a slab with unit normal,
+ * unit tangent and unit world optic axis; base gives the slab's constants. */
+void render_hit_frames(const double normal[3], const double tangent[3], const double axis_world[3],
+                       const biref_slab *base, const double dir[3], biref_hit_frames *f);
 
 #endif

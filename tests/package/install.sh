@@ -34,8 +34,16 @@ cmake -S "$src/examples/cpp" -B cpp -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_CXX_FL
 cmake --build cpp >/dev/null
 ldd cpp/shade_hit | grep -c "$libdir/libbiref.so" >/dev/null || { echo "FAIL: shade_hit not linked to the installed libbiref.so" >&2; exit 1; }
 cpp/shade_hit >cpp.json
+# The static archive through the package: its private dependencies come along as link-only.
+cmake -S "$src/examples/cpp" -B cpp_static -DCMAKE_PREFIX_PATH="$prefix" -DUSE_STATIC_BIREF=ON \
+  -DCMAKE_CXX_FLAGS="-Wall -Wextra -Werror" >/dev/null
+cmake --build cpp_static >/dev/null
+if ldd cpp_static/shade_hit | grep -c libbiref >/dev/null; then
+  echo "FAIL: the static build of shade_hit loads libbiref.so" >&2; exit 1
+fi
+cpp_static/shade_hit >cpp_static.json
 
-/usr/bin/python3 - ref.json c.json cpp.json <<'PY'
+/usr/bin/python3 - ref.json c.json cpp.json cpp_static.json <<'PY'
 import json, math, sys
 ref = json.load(open(sys.argv[1]))
 fail = 0
@@ -52,7 +60,7 @@ for path in sys.argv[2:]:
         if key.startswith(("srgb", "hit_srgb")) and not all(math.isfinite(v) for v in vals):
             print(f"FAIL {path}: {key} = {vals}")
             fail = 1
-print("ok: C (pkg-config) and C++ (find_package) programs agree with biref slab --json" if not fail else "")
+print("ok: C (pkg-config) and C++ (find_package, shared and static) programs agree with biref slab --json" if not fail else "")
 sys.exit(fail)
 PY
 
@@ -68,6 +76,17 @@ assert biref.library_path.startswith('$prefix'), biref.library_path
 bad = [(i, o) for i in 'sp' for o in 'sp' if abs(t[i][o] - ref[i][o]) > 1e-12]
 assert not bad, (t, ref)
 print('ok: installed Python package agrees with biref slab --json')
+"
+
+# pip install ./python (offline here: no index, dependencies already present), then the package
+# finds the installed library through pkg-config alone.
+/usr/bin/python3 -m pip install -q --no-build-isolation --no-deps --no-index --disable-pip-version-check \
+  --target "$tmp/pip" "$src/python" 2>/dev/null
+env -u BIREF_LIBRARY -u BIREF_CDEF PYTHONPATH="$tmp/pip" /usr/bin/python3 -c "
+import biref
+assert biref.library_path.startswith('$libdir'), biref.library_path
+assert abs(biref.slab(eta_o=1.5, eta_e=1.6, axis=(0, 1, 0), thickness_um=1)['energy']['s'] - 1) < 1e-12
+print('ok: pip install ./python works against the installed library')
 "
 
 # The README's library section as written: its C program, compiled by its own command line, and

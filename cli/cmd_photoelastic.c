@@ -473,7 +473,8 @@ int cmd_photoelastic(int argc, char **argv)
     io.width = fw >= fh ? (int)size : (int)fmax(1, lround(size * fw / fh));
     io.height = fw >= fh ? (int)fmax(1, lround(size * fh / fw)) : (int)size;
     const double lambda_N = light == BIREF_PE_MONO ? lambda : WHITE_FRINGE_LAMBDA_NM;
-    const pe_ext_ctx ectx = {&setup, sp, &field, &io, out, exposure, lambda_N, tint_rgb, root};
+    const pe_ext_ctx ectx = {&setup, sp,       &field, &io, out, exposure, lambda_N,
+                             tint_rgb, root, polarizer_deg * M_PI / 180};
     if (out && pe_ext_owns_output(&ext)) {
         if ((rc = pe_ext_write(&ext, &ectx))) goto done;
     } else if (out) {

@@ -51,6 +51,7 @@ typedef struct {
     double lambda_N;   /* wavelength of the fringe orders */
     const double *tint; /* mono tint (XYZ), 3 */
     cJSON *root;       /* JSON report or NULL */
+    double polarizer;  /* rad, for the key's colours in a plane polariscope */
 } pe_ext_ctx;
 
 void pe_ext_init(pe_ext *e);

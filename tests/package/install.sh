@@ -34,8 +34,16 @@ cmake -S "$src/examples/cpp" -B cpp -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_CXX_FL
 cmake --build cpp >/dev/null
 ldd cpp/shade_hit | grep -c "$libdir/libbiref.so" >/dev/null || { echo "FAIL: shade_hit not linked to the installed libbiref.so" >&2; exit 1; }
 cpp/shade_hit >cpp.json
+# The static archive through the package: its private dependencies come along as link-only.
+cmake -S "$src/examples/cpp" -B cpp_static -DCMAKE_PREFIX_PATH="$prefix" -DUSE_STATIC_BIREF=ON \
+  -DCMAKE_CXX_FLAGS="-Wall -Wextra -Werror" >/dev/null
+cmake --build cpp_static >/dev/null
+if ldd cpp_static/shade_hit | grep -c libbiref >/dev/null; then
+  echo "FAIL: the static build of shade_hit loads libbiref.so" >&2; exit 1
+fi
+cpp_static/shade_hit >cpp_static.json
 
-/usr/bin/python3 - ref.json c.json cpp.json <<'PY'
+/usr/bin/python3 - ref.json c.json cpp.json cpp_static.json <<'PY'
 import json, math, sys
 ref = json.load(open(sys.argv[1]))
 fail = 0
@@ -52,7 +60,7 @@ for path in sys.argv[2:]:
         if key.startswith(("srgb", "hit_srgb")) and not all(math.isfinite(v) for v in vals):
             print(f"FAIL {path}: {key} = {vals}")
             fail = 1
-print("ok: C (pkg-config) and C++ (find_package) programs agree with biref slab --json" if not fail else "")
+print("ok: C (pkg-config) and C++ (find_package, shared and static) programs agree with biref slab --json" if not fail else "")
 sys.exit(fail)
 PY
 

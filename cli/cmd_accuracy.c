@@ -66,7 +66,7 @@ static void help(void)
            "  --check-step-deg S     angle step of that test (default 5)\n"
            "  --cost                 also measure the cost per shading sample of every method, on one\n"
            "                         thread, before the sweep, on the grid's states up to 85 deg (adds\n"
-           "                         about a minute); needed for the issue #5 verdicts\n"
+           "                         about a minute); needed for the expansion criteria\n"
            "  --cost-only            only that measurement, no accuracy sweep\n"
            "  --cost-min-time S      seconds per timed run (default 0.3)\n"
            "  --cost-runs N          timed runs per method, median reported (default 5)\n"

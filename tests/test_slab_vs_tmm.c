@@ -1,6 +1,6 @@
 /* Closed form (paper eq. 17 and its reflection analogue) against the independent 4x4
  * Berreman transfer-matrix solver, complex amplitudes and power fractions, on seeded random
- * slabs spanning the issue's range: 0.5 um - 2 mm, 0-89 deg, |dn| <= 0.3 of both signs,
+ * slabs spanning the range the optics must cover: 0.5 um - 2 mm, 0-89 deg, |dn| <= 0.3 of both signs,
  * random axes, eta_i in {1, 1.33}; plus thin slabs with evanescent modes inside. */
 #include <complex.h>
 #include <math.h>

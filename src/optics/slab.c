@@ -26,8 +26,8 @@ biref_status biref_slab_prepare(const biref_slab *slab, double theta, biref_slab
     if (s == BIREF_OK) s = biref_interface_from_modes(&st->modes, &ambient, &st->bottom);
     if (s != BIREF_OK) return s;
 
-    /* READING-NOTES 4: each leg gains its own full phase k0 * (-q_down) d or k0 * q_up d; the
-     * lateral offsets cancel against the incident wavefront (eq. 11), so no path length is
+    /* docs/PAPER-ERRATA.md (appendix B): each leg gains its own full phase k0 * (-q_down) d or
+     * k0 * q_up d; the lateral offsets cancel against the incident wavefront (eq. 11), so no path length is
      * subtracted per round trip (appendix B's "- 2 P_o" would erase the Fabry–Pérot phase). */
     double d = slab->thickness_nm;
     st->opl_down[BIREF_O] = -st->modes.q[BIREF_MODE_O_DOWN] * d;

@@ -8,7 +8,7 @@
  * Why a second method: the closed form of the paper (normal modes q_o, q_e,
  * eq. 2; mode fields, eq. 3; Fresnel coefficients, appendix A; sum of all
  * orders, eq. 17) is reconstructed from an OCR'd text and has several known
- * garbles (docs: ../shared/paper/READING-NOTES.md). This file uses none of
+ * garbles (docs/PAPER-ERRATA.md). This file uses none of
  * it: inside the slab only Maxwell's equations and a numerical
  * eigen-decomposition (LAPACK zgeev) appear, so agreement between the two is
  * evidence for both.

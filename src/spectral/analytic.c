@@ -3,7 +3,7 @@
  *
  * S(|J|^2) = E + 2H (eq. 19). E, the incoherent sum of all path energies, is summed in closed
  * form as a geometric series of the component-wise |.|^2 of the round-trip operator (eqs.
- * 20–21; the right-hand vector of eq. 21 is the exit coefficients, READING-NOTES 3). H keeps
+ * 20–21; the right-hand vector of eq. 21 is the exit coefficients, docs/PAPER-ERRATA.md). H keeps
  * only the pairs (path, path + one more round trip) ("descendants", eqs. 22–23 with m = 1)
  * plus the interference of the lowest-order paths among themselves (H0, eq. 24). Complex
  * coefficients (total reflection) need S(sin(k D)) next to S(cos(k D)):

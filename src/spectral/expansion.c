@@ -1,5 +1,5 @@
 /* Exact spectral integration of the path-group expansion, for any polarizer and analyzer
- * (beyond the paper; issue #5).
+ * (beyond the paper).
  *
  * Ignoring dispersion within a band, J(k) = sum_g M_g e^{ik Phi_g}: a group g collects the
  * paths with the same numbers of o/e legs down and up, hence the same optical path Phi_g. For an

@@ -16,7 +16,7 @@ expect_ok "tiny json" accuracy "${tiny[@]}" --sweep-delta-eps 0.2 --json \
   --csv "$tmpdir/acc.csv" --markdown "$tmpdir/acc.md"
 for key in config materials summary per_theta near_axis psi_max_deg acceptance criterion elapsed_s \
            theta_deg low high grazing low_chromatic near_axis_chromatic near_axis_up reached_up frac_over_1 phi0 \
-           issue5 pass_T pass_R grid_max near_axis_max theta_of_grid_max check_near_axis_stride; do
+           expansion_criteria pass_T pass_R grid_max near_axis_max theta_of_grid_max check_near_axis_stride; do
   expect_grep "key $key" "\"$key\":"
 done
 for method in analytic expansion numeric-3 numeric-8 numeric-16 numeric-32 numeric-64 numeric-128 ground-truth \
@@ -41,7 +41,7 @@ if [ "$rows" -ne $((6 * 3 * 9 * 2 + 3 * 3 * 3 * 2)) ]; then
   fails=$((fails + 1))
 fi
 for section in "Acceptance" "Near the optic axis" "| up |" "reference converged" "sweep" "Per angle" \
-               "Issue #5 (a)" "Cost: not measured"; do
+               "Expansion criterion (a)" "Cost: not measured"; do
   if ! grep -q "$section" "$tmpdir/acc.md"; then
     echo "FAIL (markdown section $section)"
     fails=$((fails + 1))
@@ -65,7 +65,7 @@ expect_ok "cost markdown" accuracy --cost-only --cost-iterations 2
 expect_grep "cost table" "^\| expansion \| [0-9]+ \| [0-9]+ \|"
 expect_grep "cost by angle" "^\| 70-85° \|"
 
-# Everything together with the figures: the issue #5 verdicts are present (pass or fail).
+# Everything together with the figures: the expansion criteria verdicts are present (pass or fail).
 expect_ok "cost and plots" accuracy "${tiny[@]}" --sweep-delta-eps none --cost --cost-iterations 2 \
   --plot-dir "$tmpdir"
 expect_grep "criterion (a)" '\*\*\(a\): (met|not met)\.\*\*'

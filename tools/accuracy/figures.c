@@ -37,7 +37,7 @@ int acc_write_plots(const acc_run *run, const char *dir)
         snprintf(path, sizeof path, "%s/accuracy_vs_cost.png", dir);
         if (acc_plot_vs_cost(path, p, NCMP, note)) return -1;
     }
-    /* ΔE00 against θ for the methods the issue discusses (and the paper's ground truth, whose
+    /* ΔE00 against θ for the methods compared in docs/ACCURACY.md (and the paper's ground truth, whose
      * aliasing on the 3.5 mm slab shows here). */
     static const int METH[] = {M_ANALYTIC, M_EXPANSION, M_N32, M_N128, M_GT};
     enum { NMETH = sizeof METH / sizeof METH[0] };

@@ -100,7 +100,7 @@ static void json_expansion_verdict(cJSON *root, const acc_run *run)
 {
     acc_expansion_verdict e;
     acc_expansion_verdict_eval(run, &e);
-    cJSON *o = cJSON_AddObjectToObject(root, "issue5");
+    cJSON *o = cJSON_AddObjectToObject(root, "expansion_criteria");
     cJSON_AddNumberToObject(o, "theta_max_deg", CRIT_DEG);
     cJSON *a = cJSON_AddObjectToObject(o, "a");
     cJSON_AddStringToObject(a, "criterion", "expansion vs reference, every theta 0-85 deg (grid and near-axis): max dE00 "

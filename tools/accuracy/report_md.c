@@ -114,7 +114,7 @@ static void write_cost_md(FILE *f, const acc_run *run)
 
 static void write_expansion_md(FILE *f, const acc_run *run, const acc_expansion_verdict *e)
 {
-    fprintf(f, "\n### Issue #5 (a): expansion within ΔE00 ≤ %g of the reference for every θ in 0-%g°\n\n"
+    fprintf(f, "\n### Expansion criterion (a): expansion within ΔE00 ≤ %g of the reference for every θ in 0-%g°\n\n"
                "Maximum over all azimuths of the grid (θ ≤ %g°) and over the near-axis samples refracted from\n"
                "θ ≤ %g°; \"θ of grid max\" is where the grid maximum occurs.\n\n"
                "| material | T max, grid | T max, near axis | θ of T grid max | R max, grid | R max, near axis | "
@@ -140,7 +140,7 @@ static void write_expansion_md(FILE *f, const acc_run *run, const acc_expansion_
             e->ns_an, e->ns_ex, e->ratio, EXPANSION_COST_RATIO, pass_word(e->pass_cost), e->ns_an_alone, e->ns_ex_alone,
             e->ratio_alone, e->pass_a ? "met" : "not met");
 
-    fprintf(f, "\n### Issue #5 (b): at equal cost, expansion ΔE00 at least %g× below numeric integration\n\n"
+    fprintf(f, "\n### Expansion criterion (b): at equal cost, expansion ΔE00 at least %g× below numeric integration\n\n"
                "ΔE00 over the grid θ 0-%g°, all azimuths, the %d base materials together. Cost with prepare, this "
                "run.\n\n| method | ns per sample | cost / expansion | T mean | T max | R mean | R max |\n"
                "|---|---|---|---|---|---|---|\n",
@@ -267,7 +267,7 @@ static void write_axis_md(FILE *f, const acc_run *run, char bl[NBIN][32])
 /* The analytic method's acceptance criterion (acc_analytic_pass). */
 static void write_analytic_acceptance_md(FILE *f, const acc_run *run, char bl[NBIN][32])
 {
-    fprintf(f, "\n### Acceptance of issue #3: analytic, %s, mean ΔE00 ≤ 1 and max ≤ 4\n\n"
+    fprintf(f, "\n### Acceptance of the analytic method: analytic, %s, mean ΔE00 ≤ 1 and max ≤ 4\n\n"
                "| material | T mean | T max | T | R mean | R max | R |\n|---|---|---|---|---|---|---|\n",
             bl[0]);
     for (int i = 0; i < run->nbase; i++) {

@@ -91,7 +91,7 @@ int main(void)
     CHECK(biref_numeric_plan_create(sp, 32, &n32) == BIREF_OK);
     enum { M_ANALYTIC, M_EXPANSION, M_EXPANSION8, M_NUMERIC32, M_GT, N_M };
     static const char *const NAMES[N_M] = {"analytic", "expansion", "expansion order 8", "numeric-32", "ground truth"};
-    double worst[N_KINDS][N_M] = {{0}}, de_coherent[2] = {0, 0}, worst_polarized = 0;
+    double worst[N_KINDS][N_M] = {{0}}, de_coherent[2] = {0, 0}, worst_polarized = 0, worst_energy = 0;
     /* dE00 against the ground truth where it is alias-free (d <= 100 um): max, sum, count, count > 1. */
     double de_max[N_KINDS][2] = {{0}}, de_sum[N_KINDS][2] = {{0}};
     int de_n[N_KINDS] = {0}, de_over[N_KINDS][2] = {{0}};
@@ -151,6 +151,19 @@ int main(void)
                     de_over[kind][m] += de > 1;
                 }
             }
+            /* The energy balance rests on this: the incoherent path energies E of eqs. 20-21 sum to 1
+             * over outputs and directions (each path's |a|^2 is its power fraction), wherever no
+             * evanescent leg couples the faces. */
+            if (!st.total_reflection) {
+                double E[2][2][2][3], H[2][2][3];
+                for (int w = 0; w < 2; w++) biref_analytic_paper_terms(sp, &st, w, E[w], H);
+                for (int i = 0; i < 2; i++)
+                    for (int j = 0; j < 3; j++) {
+                        double sum = E[0][i][0][j] + E[0][i][1][j] + E[1][i][0][j] + E[1][i][1][j];
+                        worst_energy = fmax(worst_energy, fabs(sum - 1));
+                        CHECK_NEAR(sum, 1.0, 1e-9);
+                    }
+            }
             /* Where the fast methods switch to the exact integral, both agree with the ground
              * truth (alias-free there: short optical paths). */
             if (biref_coherent_plan(sp, &st)) {
@@ -187,6 +200,7 @@ int main(void)
             CHECK(de_max[kind][m] <= env_max[kind][m]);
             CHECK(de_sum[kind][m] <= env_mean[kind][m] * de_n[kind]);
         }
+    printf("incoherent path energies E (no total reflection): largest |sum_out (E_T + E_R) - 1| %.3g\n", worst_energy);
     printf("expansion, random Stokes input and analyzer: largest violation of 0 <= I <= 1: %.3g\n", worst_polarized);
     printf("coherent regime (%d of %d slabs, %d with evanescent modes): dE00 vs ground truth, analytic %.3g, "
            "expansion %.3g\n",

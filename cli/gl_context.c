@@ -22,7 +22,7 @@ struct gl_context {
     EGLDisplay dpy;
     EGLContext ctx;
     EGLSurface surf;
-    GLuint prog, vao, lut;
+    GLuint prog, vao, lut, plans;
     biref_spectral *sp; /* the table's source and constants, kept for the uniforms */
     char desc[256];
 };
@@ -103,7 +103,19 @@ static biref_status upload_table(gl_context *g, char *msg, size_t msg_len)
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, info.width, info.height, 0, GL_RGBA, GL_FLOAT, tex);
     free(tex);
-    return glGetError() == GL_NO_ERROR ? BIREF_OK : fail(msg, msg_len, "OpenGL: cannot create the look-up texture");
+    /* The coherent regime's sample plans. */
+    biref_gl_plans_info pl;
+    biref_gl_coherent_plans(g->sp, &pl, NULL);
+    tex = malloc((size_t)pl.width * pl.height * 4 * sizeof *tex);
+    if (!tex) return fail(msg, msg_len, "out of memory");
+    biref_gl_coherent_plans(g->sp, &pl, tex);
+    glGenTextures(1, &g->plans);
+    glBindTexture(GL_TEXTURE_2D, g->plans);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, pl.width, pl.height, 0, GL_RGBA, GL_FLOAT, tex);
+    free(tex);
+    return glGetError() == GL_NO_ERROR ? BIREF_OK : fail(msg, msg_len, "OpenGL: cannot create the look-up textures");
 }
 
 /* A context on one display: OpenGL >= 4.3 core, current, surfaceless when the driver allows it
@@ -220,6 +232,7 @@ void gl_context_destroy(gl_context *g)
     if (g->ctx != EGL_NO_CONTEXT && eglGetCurrentContext() == g->ctx) {
         if (g->prog) glDeleteProgram(g->prog);
         if (g->lut) glDeleteTextures(1, &g->lut);
+        if (g->plans) glDeleteTextures(1, &g->plans);
         if (g->vao) glDeleteVertexArrays(1, &g->vao);
     }
     release_context(g);
@@ -273,6 +286,10 @@ biref_status gl_context_render(gl_context *g, const biref_scene *scene, float *x
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, g->lut);
     glUniform1i(glGetUniformLocation(g->prog, "u_lut"), 0);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, g->plans);
+    glUniform1i(glGetUniformLocation(g->prog, "u_plans"), 1);
+    glActiveTexture(GL_TEXTURE0);
     glBindVertexArray(g->vao);
     glViewport(0, 0, W, H);
     glDisable(GL_BLEND);

@@ -26,7 +26,9 @@ BIREF_API void biref_spectral_config_default(biref_spectral_config *cfg);
 
 typedef struct biref_spectral biref_spectral;
 
-/* BIREF_ERR_INVALID for an unknown cmf, non-finite or inverted range (min >= max, min <= 0). */
+/* BIREF_ERR_INVALID for an unknown cmf, a non-finite or inverted range (min >= max, min <= 0),
+ * a range outside the colour-matching data (biref_cmf_domain) or one where a band integrates to
+ * zero. */
 BIREF_API biref_status biref_spectral_create(const biref_spectral_config *cfg, biref_spectral **out);
 BIREF_API void biref_spectral_destroy(biref_spectral *sp);
 BIREF_API const biref_cmf_band *biref_spectral_band(const biref_spectral *sp);
@@ -109,6 +111,13 @@ BIREF_API void biref_expansion_opts_default(biref_expansion_opts *o);
 BIREF_API biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
                                                           const biref_complex C[2][2], const biref_complex P[2][2],
                                                           const biref_expansion_opts *opts, double xyz[3], int *order_used);
+
+/* Band-normalised energy, detected for coherency C and analyzer P (NULL = none), of all paths
+ * of order > `order` added incoherently: the closed-form tail of the path-group expansion
+ * (order -1: all paths). which = BIREF_TRANSMISSION or BIREF_REFLECTION. For
+ * judging a truncation (bench_spectral --truncation); no allocation. */
+BIREF_API void biref_expansion_tail(const biref_spectral *sp, const biref_slab_state *st, int which,
+                                    const biref_complex C[2][2], const biref_complex P[2][2], int order, double out[3]);
 
 /* The four input/output pairs of transmission and reflection (like biref_spectrum_analytic). */
 BIREF_API biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab_state *st,

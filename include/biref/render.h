@@ -109,11 +109,23 @@ biref_status biref_scene_validate(const biref_scene *scene, char *msg, size_t ms
 /* Rendering                                                                 */
 /* ------------------------------------------------------------------------ */
 
+/* Spatial anti-aliasing of the phase integrals (docs/ANTIALIASING.md). */
+typedef enum {
+    BIREF_ANTIALIAS_NONE = 0,     /* point look-ups at each sample's path differences (default) */
+    BIREF_ANTIALIAS_PREFILTER = 1 /* S(cos kD), S(sin kD) averaged over each sample's footprint in D
+                                     (analytic and expansion methods only) */
+} biref_antialias;
+
+#define BIREF_MAX_SUPERSAMPLE 64
+
 typedef struct {
     biref_method method;
     int samples; /* BIREF_METHOD_NUMERIC: spectral samples (default 64); ignored otherwise */
     int threads; /* OpenMP threads; 0 = the OpenMP default */
     biref_expansion_opts expansion; /* BIREF_METHOD_EXPANSION: order / tolerance */
+    biref_antialias antialias;      /* default BIREF_ANTIALIAS_NONE */
+    int supersample; /* K x K stratified, jittered samples per pixel, box-filtered (default 1:
+                        one ray through the pixel centre); 1 ... BIREF_MAX_SUPERSAMPLE */
 } biref_render_options;
 
 void biref_render_options_default(biref_render_options *opt);

@@ -6,6 +6,10 @@
 #include <complex.h>
 
 #include "biref/render.h"
+#include "spectral/phase_prefilter.h"
+
+/* biref_slab_prepare needs theta < pi/2; a ray grazing the slab is clamped just below. */
+#define RENDER_THETA_MAX (0.5 * M_PI - 1e-7)
 
 typedef struct {
     double origin[3];
@@ -50,12 +54,15 @@ struct biref_renderer {
     double w_in[2], mask[2]; /* s/p light fractions and analyzer mask (paper's model) */
     biref_spectral *sp;
     biref_numeric_plan *plan; /* numeric and ground truth */
+    biref_phase_prefilter *prefilter; /* antialias prefilter: analytic and expansion */
 };
 
 /* camera.c */
 void render_camera_init(render_camera *c, const biref_camera *cam);
 /* Unit direction through the centre of pixel (x, y), y = 0 at the top. */
 void render_camera_ray(const render_camera *c, int x, int y, double dir[3]);
+/* Unit direction through the image point (fx, fy) in pixel units (pixel (x, y) spans [x, x + 1) x [y, y + 1)). */
+void render_camera_ray_at(const render_camera *c, double fx, double fy, double dir[3]);
 
 /* shade.c */
 void render_env_init(render_env *e, const biref_environment *env);
@@ -63,8 +70,15 @@ void render_env_init(render_env *e, const biref_environment *env);
  * front of `from`, else the environment. */
 void render_radiance(const biref_renderer *r, const double from[3], const double dir[3], double xyz[3]);
 /* The whole pixel: nearest slab hit, transmission and reflection, or the filtered
- * background. Returns 1 if a slab was hit, and sets *fallback when a slab evaluation
+ * background. dx, dy: the steps to the neighbouring samples' directions, for the prefilter's
+ * footprint (NULL: point phase integrals). Returns 1 if a slab was hit, and sets *fallback when a slab evaluation
  * failed and the fallback was used. */
-int render_shade_pixel(const biref_renderer *r, const double dir[3], double xyz[3], int *fallback);
+int render_shade_pixel(const biref_renderer *r, const double dir[3], const double dx[3], const double dy[3], double xyz[3],
+                       int *fallback);
+
+/* footprint.c: the change of each leg type's optical path between the ray dir and the rays
+ * dir + dx, dir + dy (the neighbouring samples), for the slab sl (its transmission frame). */
+void render_footprint(const biref_renderer *r, const render_slab *sl, const double dir[3], const double dx[3],
+                      const double dy[3], biref_opl_footprint *fp);
 
 #endif

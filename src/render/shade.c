@@ -11,8 +11,7 @@
 
 /* Rays leave surfaces from exactly on them; hits closer than this are the surface itself. */
 #define RAY_EPS 1e-9
-/* biref_slab_prepare needs theta < pi/2; a ray grazing the slab is clamped just below. */
-#define THETA_MAX (0.5 * M_PI - 1e-7)
+#define THETA_MAX RENDER_THETA_MAX
 
 void render_env_init(render_env *e, const biref_environment *env)
 {
@@ -132,15 +131,15 @@ static double passthrough(const double C[2][2], const double P[2][2])
  * axis in world coordinates, the s direction of every wave), for light arriving along k_in and
  * leaving along k_out. which selects transmission or reflection. Returns 0 on success;
  * non-zero leaves xyz undefined. */
-static int eval_slab(const biref_renderer *r, const biref_slab_state *st, const double x[3], const double k_in[3],
-                     const double k_out[3], int which, double xyz[3])
+static int eval_slab(const biref_renderer *r, const biref_slab_state *st, const biref_opl_footprint *fp,
+                     const double x[3], const double k_in[3], const double k_out[3], int which, double xyz[3])
 {
     if (r->opt.method == BIREF_METHOD_ANALYTIC) {
         /* Only one of T and R is needed per evaluation, so call the per-direction terms
          * (eq. 25: S = E + 2H) rather than biref_spectrum_analytic, which computes both and
          * would double the cost of the dominant part of the pixel. */
         double E[2][2][3], H[2][2][3], X[2][2][3];
-        biref_analytic_terms(r->sp, st, which, E, H);
+        biref_analytic_terms_footprint(r->sp, st, fp, which, E, H);
         for (int i = 0; i < 2; i++)
             for (int o = 0; o < 2; o++)
                 for (int j = 0; j < 3; j++) X[i][o][j] = E[i][o][j] + 2.0 * H[i][o][j];
@@ -173,8 +172,8 @@ static int eval_slab(const biref_renderer *r, const biref_slab_state *st, const 
             }
         const double complex(*Pp)[2] = r->filter.type == BIREF_FILTER_NONE ? NULL : (const double complex(*)[2])P;
         if (r->opt.method == BIREF_METHOD_EXPANSION) {
-            if (biref_spectrum_expansion_polarized(r->sp, st, which, (const double complex(*)[2])C, Pp,
-                                                   &r->opt.expansion, xyz, NULL) != BIREF_OK)
+            if (biref_expansion_polarized_footprint(r->sp, st, fp, which, (const double complex(*)[2])C, Pp,
+                                                    &r->opt.expansion, xyz, NULL) != BIREF_OK)
                 return 1;
         } else {
             biref_spectrum_numeric_polarized(r->plan, st, which, (const double complex(*)[2])C, Pp, xyz);
@@ -201,7 +200,8 @@ static double background_factor(const biref_renderer *r, const double k[3], cons
     return passthrough(C, P);
 }
 
-int render_shade_pixel(const biref_renderer *r, const double dir[3], double xyz[3], int *fallback)
+int render_shade_pixel(const biref_renderer *r, const double dir[3], const double dx[3], const double dy[3], double xyz[3],
+                       int *fallback)
 {
     *fallback = 0;
     const double *o = r->cam.origin;
@@ -264,8 +264,14 @@ int render_shade_pixel(const biref_renderer *r, const double dir[3], double xyz[
     int failT = 1, failR = 1;
     if (biref_slab_prepare(&slab, theta, &stT) == BIREF_OK) {
         biref_slab_state_flip(&stT, &stR);
-        failT = eval_slab(r, &stT, xT, k_view, k_view, BIREF_TRANSMISSION, tT);
-        failR = eval_slab(r, &stR, xR, k_refl_in, k_view, BIREF_REFLECTION, tR);
+        biref_opl_footprint fpT, fpR, *pT = NULL, *pR = NULL;
+        if (r->prefilter && dx && dy) {
+            render_footprint(r, hit, dir, dx, dy, &fpT);
+            biref_opl_footprint_flip(&fpT, &fpR);
+            pT = &fpT, pR = &fpR;
+        }
+        failT = eval_slab(r, &stT, pT, xT, k_view, k_view, BIREF_TRANSMISSION, tT);
+        failR = eval_slab(r, &stR, pR, xR, k_refl_in, k_view, BIREF_REFLECTION, tR);
     }
     if (failT || failR) {
         /* A failed evaluation (grazing-angle breakdown) must not put a NaN in the image:

@@ -8,6 +8,8 @@
 
 #include <omp.h>
 
+#include "cli_data.h"
+#include "cli_gl.h"
 #include "cli_render.h"
 #include "commands.h"
 #include "json_out.h"
@@ -26,13 +28,17 @@ static void help(void)
            "to the full frame (reported as extrapolated; its frame time is then the sampled CPU\n"
            "time scaled to the frame and divided by the threads, as rows parallelise perfectly).\n\n"
            "Options:\n"
-           "  --scene FILE         scene (default examples/fig9a.json)\n"
+           "  --scene FILE         scene (default examples/fig9a.json; $BIREF_DATA_DIR or the installed copy\n"
+           "                       when not in the current directory)\n"
            "  --width W            frame width (default 1920)\n"
            "  --height H           frame height (default 1080)\n"
            "  --methods LIST       comma-separated: analytic, expansion, ground-truth, numeric-N\n"
            "                       (default " DEFAULT_METHODS ")\n"
            "  --max-seconds S      time budget per method before extrapolating (default 10)\n"
            "  --threads T          OpenMP threads (default: all cores)\n"
+           "  --backend B          cpu (default) or gl: also time the analytic method as a GLSL shader\n"
+           "                       (GPU time from timer queries, median of --frames frames; docs/GPU.md)\n"
+           "  --frames N           gl: frames timed after one warm-up (default 5)\n"
            "  --json               {width, height, threads, methods: [{method, ms_per_frame,\n"
            "                       ns_per_pixel, extrapolated, rows_timed, cpu_ms_per_frame}]}\n"
            "  -h, --help           this help\n\n"
@@ -117,7 +123,7 @@ static void format_time(double ms, char *buf, size_t n)
 
 int cmd_bench(int argc, char **argv)
 {
-    enum { OPT_SCENE = 3000, OPT_WIDTH, OPT_HEIGHT, OPT_METHODS, OPT_MAX_SECONDS, OPT_THREADS, OPT_JSON };
+    enum { OPT_SCENE = 3000, OPT_WIDTH, OPT_HEIGHT, OPT_METHODS, OPT_MAX_SECONDS, OPT_THREADS, OPT_JSON, OPT_BACKEND, OPT_FRAMES };
     static const struct option longopts[] = {{"scene", required_argument, 0, OPT_SCENE},
                                              {"width", required_argument, 0, OPT_WIDTH},
                                              {"height", required_argument, 0, OPT_HEIGHT},
@@ -125,12 +131,15 @@ int cmd_bench(int argc, char **argv)
                                              {"max-seconds", required_argument, 0, OPT_MAX_SECONDS},
                                              {"threads", required_argument, 0, OPT_THREADS},
                                              {"json", no_argument, 0, OPT_JSON},
+                                             {"backend", required_argument, 0, OPT_BACKEND},
+                                             {"frames", required_argument, 0, OPT_FRAMES},
                                              {"help", no_argument, 0, 'h'},
                                              {0, 0, 0, 0}};
-    const char *scene_path = "examples/fig9a.json", *methods = DEFAULT_METHODS;
+    const char *scene_path = NULL, *methods = DEFAULT_METHODS;
     long width = 1920, height = 1080, threads = 0;
     double max_seconds = 10.0;
-    int json = 0;
+    int json = 0, gl = 0;
+    long frames = 5;
     opterr = 0;
     optind = 1;
     int c;
@@ -153,6 +162,12 @@ int cmd_bench(int argc, char **argv)
             if (cli_parse_int(CMD, "--threads", optarg, 1, 1024, &threads)) return CLI_EXIT_USAGE;
             break;
         case OPT_JSON: json = 1; break;
+        case OPT_BACKEND:
+            if (cli_parse_backend(CMD, optarg, &gl)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_FRAMES:
+            if (cli_parse_int(CMD, "--frames", optarg, 1, 1000, &frames)) return CLI_EXIT_USAGE;
+            break;
         default: cli_getopt_error(CMD, c, argv); return CLI_EXIT_USAGE;
         }
     }
@@ -161,6 +176,8 @@ int cmd_bench(int argc, char **argv)
     int n_methods = 0;
     if (parse_methods(methods, m, &n_methods)) return CLI_EXIT_USAGE;
     biref_scene scene;
+    char default_scene[4096];
+    if (!scene_path) scene_path = cli_data_path("examples/fig9a.json", default_scene, sizeof default_scene);
     int rc = cli_load_scene(CMD, scene_path, &scene);
     if (!rc) rc = cli_scene_resize(CMD, &scene, width, height);
     if (rc) return rc;
@@ -199,6 +216,10 @@ int cmd_bench(int argc, char **argv)
     }
     free(xyz);
     if (rc) return rc;
+    double gl_gpu_ms = 0, gl_wall_ms = 0;
+    char gl_device[256] = "";
+    if (gl && (rc = cli_gl_bench(CMD, &scene, (int)frames, &gl_gpu_ms, &gl_wall_ms, gl_device, sizeof gl_device)))
+        return rc;
 
     if (json) {
         cJSON *root = cJSON_CreateObject();
@@ -215,6 +236,19 @@ int cmd_bench(int argc, char **argv)
             cJSON_AddNumberToObject(o, "ns_per_pixel", round(m[i].ms * 1e6 / ((double)W * H) * 10) / 10);
             cJSON_AddBoolToObject(o, "extrapolated", m[i].extrapolated);
             cJSON_AddNumberToObject(o, "rows_timed", m[i].rows_timed);
+            cJSON_AddStringToObject(o, "backend", "cpu");
+            cJSON_AddItemToArray(arr, o);
+        }
+        if (gl) {
+            cJSON *o = cJSON_CreateObject();
+            cJSON_AddStringToObject(o, "method", "analytic");
+            cJSON_AddStringToObject(o, "backend", "gl");
+            cJSON_AddNumberToObject(o, "ms_per_frame", round(gl_gpu_ms * 1000) / 1000);
+            cJSON_AddNumberToObject(o, "gpu_ms_per_frame", round(gl_gpu_ms * 1000) / 1000);
+            cJSON_AddNumberToObject(o, "wall_ms_per_frame", round(gl_wall_ms * 1000) / 1000);
+            cJSON_AddNumberToObject(o, "ns_per_pixel", round(gl_gpu_ms * 1e6 / ((double)W * H) * 10) / 10);
+            cJSON_AddNumberToObject(o, "frames", (double)frames);
+            cJSON_AddStringToObject(o, "device", gl_device);
             cJSON_AddItemToArray(arr, o);
         }
         return json_print_and_free(root) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
@@ -246,6 +280,14 @@ int cmd_bench(int argc, char **argv)
             if (m[i].extrapolated) printf("   (extrapolated from %d rows)", m[i].rows_timed);
             printf("\n");
         }
+    }
+    if (gl) {
+        char tm[32], wall[32];
+        format_time(gl_gpu_ms, tm, sizeof tm);
+        format_time(gl_wall_ms, wall, sizeof wall);
+        printf("GPU (OpenGL: %s)\n%-34s %14s %12.1f %14s\n", gl_device, "  analytic, GPU time", tm,
+               gl_gpu_ms * 1e6 / ((double)W * H), "-");
+        printf("%-34s %14s   (median of %ld frames, draw to read-back)\n", "  analytic, wall time", wall, frames);
     }
     return CLI_EXIT_OK;
 }

@@ -24,7 +24,7 @@ static void help(void)
            "Options:\n"
            "  -o, --output FILE    write the difference map (PNG)\n"
            "  --no-legend          write the map without the legend strip\n"
-           "  --json               {width, height, mean, p95, max, over_1, over_4} on stdout\n"
+           "  --json               {width, height, mean, p95, p99, max, over_1, over_4} on stdout\n"
            "                       (over_N: fraction of pixels with dE00 > N)\n"
            "  -h, --help           this help\n\n"
            "Both images must have the same size. Exit status 0 (whatever the difference), 1 on an\n"
@@ -107,7 +107,9 @@ int cmd_diff(int argc, char **argv)
     if (argc - optind < 2) return cli_error(CMD, "expected two images A.png B.png (see biref diff --help)"), CLI_EXIT_USAGE;
     if (argc - optind > 2) return cli_error(CMD, "unexpected argument '%s'", argv[optind + 2]), CLI_EXIT_USAGE;
     const char *pa = argv[optind], *pb = argv[optind + 1];
-    if (out && cli_check_writable(CMD, out)) return CLI_EXIT_FAIL;
+    const char *inputs[2] = {pa, pb};
+    int rc_out = out ? cli_check_output(CMD, out, inputs, 2) : 0;
+    if (rc_out) return rc_out;
 
     char msg[600];
     int wa, ha, wb, hb;
@@ -166,6 +168,8 @@ int cmd_diff(int argc, char **argv)
     qsort(de, n, sizeof *de, cmp_double);
     size_t rank = (size_t)ceil(0.95 * (double)n);
     double p95 = de[rank > 0 ? rank - 1 : 0];
+    rank = (size_t)ceil(0.99 * (double)n);
+    double p99 = de[rank > 0 ? rank - 1 : 0];
     free(de);
     if (rc) return rc;
     if (json) {
@@ -174,6 +178,7 @@ int cmd_diff(int argc, char **argv)
         cJSON_AddNumberToObject(root, "height", ha);
         cJSON_AddNumberToObject(root, "mean", mean);
         cJSON_AddNumberToObject(root, "p95", p95);
+        cJSON_AddNumberToObject(root, "p99", p99);
         cJSON_AddNumberToObject(root, "max", max);
         cJSON_AddNumberToObject(root, "over_1", (double)over1 / (double)n);
         cJSON_AddNumberToObject(root, "over_4", (double)over4 / (double)n);

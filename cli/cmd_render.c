@@ -5,6 +5,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "cli_gl.h"
 #include "cli_polarizer.h"
 #include "cli_render.h"
 #include "commands.h"
@@ -19,10 +20,14 @@ static void help(void)
            "transmitted from behind and reflected from the camera side, integrated over the CIE 1931\n"
            "colour-matching functions (380-700 nm), written as an 8-bit sRGB PNG.\n\n"
            "Options:\n"
-           "  -o, --output FILE    output PNG (required)\n"
+           "  -o, --output FILE    output PNG (required; \"-\" = standard output). Written to a\n"
+           "                       temporary file and renamed into place, or through a symlink,\n"
+           "                       FIFO or device\n"
            "  --method M           analytic (default; the paper's eq. 26), numeric, ground-truth\n"
            "                       (numeric with %d samples) or expansion (exact integral of the\n"
            "                       path-group expansion; any polarizer, docs/PHYSICS.md §5)\n"
+           "  --backend B          cpu (default) or gl: the analytic method as a GLSL shader through\n"
+           "                       EGL and OpenGL >= 4.3 (any polarizer; docs/GPU.md)\n"
            "  --samples N          spectral samples for --method numeric (default 64)\n"
            "  --order N            expansion: every pair of path groups up to order N interferes,\n"
            "                       the rest adds incoherently, 0-8 (default adaptive)\n"
@@ -44,13 +49,14 @@ static void help(void)
            BIREF_GROUND_TRUTH_SAMPLES);
 }
 
-enum { OPT_METHOD = 2000, OPT_SAMPLES, OPT_WIDTH, OPT_HEIGHT, OPT_THREADS, OPT_PFM, OPT_JSON, OPT_ORDER, OPT_TOLERANCE, OPT_ANTIALIAS,
-       OPT_SUPERSAMPLE };
+enum { OPT_METHOD = 2000, OPT_SAMPLES, OPT_WIDTH, OPT_HEIGHT, OPT_THREADS, OPT_PFM, OPT_JSON, OPT_ORDER, OPT_TOLERANCE, OPT_BACKEND,
+       OPT_ANTIALIAS, OPT_SUPERSAMPLE };
 
 int cmd_render(int argc, char **argv)
 {
     static const struct option longopts[] = {{"output", required_argument, 0, 'o'},
                                              {"method", required_argument, 0, OPT_METHOD},
+                                             {"backend", required_argument, 0, OPT_BACKEND},
                                              {"samples", required_argument, 0, OPT_SAMPLES},
                                              {"order", required_argument, 0, OPT_ORDER},
                                              {"tolerance", required_argument, 0, OPT_TOLERANCE},
@@ -66,7 +72,7 @@ int cmd_render(int argc, char **argv)
                                              {0, 0, 0, 0}};
     const char *out = NULL, *pfm = NULL;
     long width = 0, height = 0, threads = 0, samples = 0, supersample = 1;
-    int json = 0, quiet = 0, have_samples = 0, have_expansion_opt = 0, antialias = -1;
+    int json = 0, quiet = 0, have_samples = 0, have_expansion_opt = 0, gl = 0, have_method = 0, antialias = -1;
     biref_render_options opt;
     biref_render_options_default(&opt);
     opterr = 0;
@@ -82,6 +88,10 @@ int cmd_render(int argc, char **argv)
                 return cli_error(CMD, "--method: expected analytic, numeric, ground-truth or expansion, got '%s'",
                                  optarg),
                        CLI_EXIT_USAGE;
+            have_method = 1;
+            break;
+        case OPT_BACKEND:
+            if (cli_parse_backend(CMD, optarg, &gl)) return CLI_EXIT_USAGE;
             break;
         case OPT_SAMPLES:
             if (cli_parse_int(CMD, "--samples", optarg, 1, 65536, &samples)) return CLI_EXIT_USAGE;
@@ -125,17 +135,23 @@ int cmd_render(int argc, char **argv)
     if (optind + 1 < argc) return cli_error(CMD, "unexpected argument '%s'", argv[optind + 1]), CLI_EXIT_USAGE;
     const char *scene_path = argv[optind];
     if (!out) return cli_error(CMD, "missing -o OUT.png"), CLI_EXIT_USAGE;
+    if (json && (strcmp(out, "-") == 0 || (pfm && strcmp(pfm, "-") == 0)))
+        return cli_error(CMD, "--json and an image on standard output ('-') exclude each other"), CLI_EXIT_USAGE;
     if (have_samples && opt.method != BIREF_METHOD_NUMERIC)
         return cli_error(CMD, "--samples only applies to --method numeric"), CLI_EXIT_USAGE;
     if (have_samples) opt.samples = (int)samples;
     if (have_expansion_opt && opt.method != BIREF_METHOD_EXPANSION)
         return cli_error(CMD, "--order/--tolerance only apply to --method expansion"), CLI_EXIT_USAGE;
     opt.threads = (int)threads;
+    if (gl && ((have_method && opt.method != BIREF_METHOD_ANALYTIC) || threads))
+        return cli_error(CMD, "--backend gl runs the analytic method only (no --method other than analytic, no --threads)"),
+               CLI_EXIT_USAGE;
     opt.supersample = (int)supersample;
-    /* The prefilter needs the phase table of the analytic method and the expansion. */
-    int table_method = opt.method == BIREF_METHOD_ANALYTIC || opt.method == BIREF_METHOD_EXPANSION;
+    /* The prefilter needs the phase table of the analytic method and the expansion (on the CPU). */
+    int table_method = !gl && (opt.method == BIREF_METHOD_ANALYTIC || opt.method == BIREF_METHOD_EXPANSION);
     if (antialias == BIREF_ANTIALIAS_PREFILTER && !table_method)
-        return cli_error(CMD, "--antialias prefilter needs --method analytic or expansion"), CLI_EXIT_USAGE;
+        return cli_error(CMD, "--antialias prefilter needs --method analytic or expansion on the CPU"), CLI_EXIT_USAGE;
+    if (gl && supersample > 1) return cli_error(CMD, "--supersample needs the CPU back-end"), CLI_EXIT_USAGE;
     opt.antialias = antialias >= 0 ? (biref_antialias)antialias
                                    : table_method ? BIREF_ANTIALIAS_PREFILTER : BIREF_ANTIALIAS_NONE;
 
@@ -144,9 +160,11 @@ int cmd_render(int argc, char **argv)
     if (!rc) rc = cli_scene_resize(CMD, &scene, width, height);
     if (rc) return rc;
     /* Fail on a bad output path before rendering for seconds, not after. */
-    if ((rc = cli_check_writable(CMD, out)) || (pfm && (rc = cli_check_writable(CMD, pfm)))) return rc;
+    const char *inputs[2] = {scene_path, out};
+    if ((rc = cli_check_output(CMD, out, inputs, 1)) || (pfm && (rc = cli_check_output(CMD, pfm, inputs, 2)))) return rc;
     biref_renderer *r = NULL;
-    if ((rc = cli_renderer_create(CMD, &scene, &opt, &r))) return rc;
+    /* The GL back-end handles world-fixed polarizers too (docs/GPU.md): no CPU renderer then. */
+    if (!gl && (rc = cli_renderer_create(CMD, &scene, &opt, &r))) return rc;
 
     const int W = scene.camera.width, H = scene.camera.height;
     const size_t n = (size_t)W * H;
@@ -159,10 +177,15 @@ int cmd_render(int argc, char **argv)
         return cli_error(CMD, "out of memory for a %dx%d image", W, H), CLI_EXIT_FAIL;
     }
     biref_progress_bar bar;
-    biref_progress_bar_init(&bar, stderr, !quiet && isatty(fileno(stderr)), "render");
+    biref_progress_bar_init(&bar, stderr, !gl && !quiet && isatty(fileno(stderr)), "render");
     biref_render_stats stats;
-    double t0 = biref_wall_seconds();
-    biref_render_image(r, xyz, biref_progress_bar_update, &bar, &stats);
+    double t0 = biref_wall_seconds(), gpu_ms = 0;
+    if (gl && (rc = cli_gl_render(CMD, &scene, xyz, &stats, &gpu_ms))) {
+        free(xyz);
+        free(rgb);
+        return rc;
+    }
+    if (!gl) biref_render_image(r, xyz, biref_progress_bar_update, &bar, &stats);
     double ms = 1e3 * (biref_wall_seconds() - t0);
     biref_progress_bar_finish(&bar);
     biref_renderer_destroy(r);
@@ -198,6 +221,8 @@ int cmd_render(int argc, char **argv)
         cJSON_AddNumberToObject(root, "width", W);
         cJSON_AddNumberToObject(root, "height", H);
         cJSON_AddStringToObject(root, "method", biref_method_name(opt.method));
+        cJSON_AddStringToObject(root, "backend", gl ? "gl" : "cpu");
+        if (gl) cJSON_AddNumberToObject(root, "gpu_ms", round(gpu_ms * 1000) / 1000);
         if (samples_used)
             cJSON_AddNumberToObject(root, "samples", samples_used);
         else
@@ -212,10 +237,12 @@ int cmd_render(int argc, char **argv)
         if (pfm) cJSON_AddStringToObject(root, "pfm", pfm);
         return json_print_and_free(root) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
     }
-    printf("wrote %s (%dx%d, %s", out, W, H, biref_method_name(opt.method));
-    if (opt.method == BIREF_METHOD_NUMERIC) printf(" %d samples", samples_used);
-    if (opt.antialias == BIREF_ANTIALIAS_PREFILTER) printf(", prefiltered");
-    if (opt.supersample > 1) printf(", %dx%d samples/pixel", opt.supersample, opt.supersample);
-    printf(", %.0f ms)%s%s\n", ms, pfm ? " and " : "", pfm ? pfm : "");
+    /* With the image on standard output ("-o -"), the summary goes to standard error. */
+    FILE *info = strcmp(out, "-") == 0 ? stderr : stdout;
+    fprintf(info, "wrote %s (%dx%d, %s%s", out, W, H, biref_method_name(opt.method), gl ? " on the GPU" : "");
+    if (opt.method == BIREF_METHOD_NUMERIC) fprintf(info, " %d samples", samples_used);
+    if (opt.antialias == BIREF_ANTIALIAS_PREFILTER) fprintf(info, ", prefiltered");
+    if (opt.supersample > 1) fprintf(info, ", %dx%d samples/pixel", opt.supersample, opt.supersample);
+    fprintf(info, ", %.0f ms)%s%s\n", ms, pfm ? " and " : "", pfm ? pfm : "");
     return CLI_EXIT_OK;
 }

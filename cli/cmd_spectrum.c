@@ -88,25 +88,129 @@ static int all_finite(const biref_spectrum *s)
     return 1;
 }
 
-int cmd_spectrum(int argc, char **argv)
-{
+/* The command line, parsed. */
+typedef struct {
     cli_slab_opts so;
-    cli_slab_opts_init(&so);
     biref_spectral_config cfg;
-    biref_spectral_config_default(&cfg);
-    biref_method method = BIREF_METHOD_ANALYTIC;
-    long samples = 0; /* 0: not given */
+    biref_method method;
+    long samples; /* 0: not given */
     cli_light light;
-    cli_light_default(&light);
-    int json = 0;
+    int json;
     biref_expansion_opts eopts;
-    biref_expansion_opts_default(&eopts);
-    int have_order = 0, have_tol = 0;
-    /* General polarisation: Stokes input and/or an analyzer projector (NULL-able). */
-    int general_in = 0, general_an = 0;
-    double stokes[4] = {1, 0, 0, 0};
+    int have_order, have_tol;
+    /* General polarisation: Stokes input and/or an analyzer projector. */
+    int general_in, general_an;
+    double stokes[4];
     double complex P_an[2][2];
-    char pol_text[64] = "", an_text[64] = "";
+    char pol_text[64], an_text[64];
+} spectrum_args;
+
+/* What is printed. */
+typedef struct {
+    int n_samples; /* numeric methods, else 0 */
+    biref_slab_state st;
+    biref_spectrum spec;
+    double T_xyz[3], R_xyz[3], T_rgb[3], R_rgb[3];
+    int order_used[2];
+} spectrum_result;
+
+/* One option of the command (not a slab option). Returns 0, 1 after --help, -1 on bad usage. */
+static int handle_option(spectrum_args *a, int c, char **argv)
+{
+    switch (c) {
+    case 'h': help(); return 1;
+    case OPT_METHOD:
+        if (biref_method_from_name(optarg, &a->method) != BIREF_OK)
+            return cli_error(CMD, "--method: expected analytic, numeric, ground-truth or expansion, got '%s'", optarg),
+                   -1;
+        return 0;
+    case OPT_SAMPLES: return cli_parse_int(CMD, "--samples", optarg, 1, MAX_SAMPLES, &a->samples) ? -1 : 0;
+    case OPT_CMF:
+        if (biref_cmf_kind_from_name(optarg, &a->cfg.cmf) != BIREF_OK)
+            return cli_error(CMD, "--cmf: expected cie1931 or wyman2013, got '%s'", optarg), -1;
+        return 0;
+    case OPT_RANGE: {
+        double r2[2];
+        if (cli_parse_range_nm(CMD, "--range-nm", optarg, r2)) return -1;
+        a->cfg.lambda_min_nm = r2[0];
+        a->cfg.lambda_max_nm = r2[1];
+        return 0;
+    }
+    case OPT_POL: return cli_parse_polarization(CMD, "--polarization", optarg, a->light.w_in) ? -1 : 0;
+    case OPT_ANALYZER: {
+        int g = cli_parse_general_analyzer(CMD, "--analyzer", optarg, a->P_an);
+        if (g < 0) return -1;
+        if (g > 0) {
+            a->general_an = 1;
+            snprintf(a->an_text, sizeof a->an_text, "%s", optarg);
+        } else if (cli_parse_analyzer(CMD, "--analyzer", optarg, a->light.mask)) {
+            return -1;
+        }
+        return 0;
+    }
+    case OPT_POLARIZER:
+        if (cli_parse_polarizer_state(CMD, "--polarizer", optarg, a->stokes)) return -1;
+        a->general_in = 1;
+        snprintf(a->pol_text, sizeof a->pol_text, "%s", optarg);
+        return 0;
+    case OPT_STOKES:
+        if (cli_parse_stokes(CMD, "--stokes", optarg, a->stokes)) return -1;
+        a->general_in = 1;
+        snprintf(a->pol_text, sizeof a->pol_text, "stokes:%s", optarg);
+        return 0;
+    case OPT_ORDER:
+        if (cli_parse_expansion_order(CMD, optarg, &a->eopts)) return -1;
+        a->have_order = 1;
+        return 0;
+    case OPT_TOLERANCE:
+        if (cli_parse_expansion_tolerance(CMD, optarg, &a->eopts)) return -1;
+        a->have_tol = 1;
+        return 0;
+    case OPT_JSON: a->json = 1; return 0;
+    default: cli_getopt_error(CMD, c, argv); return -1;
+    }
+}
+
+/* Options that only make sense together. Returns 0 or -1 (one error line printed). */
+static int check_args(spectrum_args *a)
+{
+    /* --samples with another method would be silently ignored; refuse it so a typo in --method
+     * cannot masquerade as a numeric run. */
+    if (a->samples && a->method != BIREF_METHOD_NUMERIC)
+        return cli_error(CMD, "--samples: only valid with --method numeric (method is %s)",
+                         biref_method_name(a->method)),
+               -1;
+    if ((a->have_order || a->have_tol) && a->method != BIREF_METHOD_EXPANSION)
+        return cli_error(CMD, "%s: only valid with --method expansion", a->have_order ? "--order" : "--tolerance"), -1;
+    if (a->have_order && a->have_tol) return cli_error(CMD, "--order and --tolerance exclude each other"), -1;
+    if ((a->general_in || a->general_an) && a->method == BIREF_METHOD_ANALYTIC)
+        return cli_error(CMD,
+                         "%s needs --method numeric, ground-truth or expansion (the paper's method handles s/p only)",
+                         a->general_in ? "--polarizer/--stokes" : "--analyzer linear/circular"),
+               -1;
+    if (!a->general_in) {
+        /* The s/p fractions as a (diagonal) Stokes vector, for the output. */
+        a->stokes[0] = 1.0;
+        a->stokes[1] = a->light.w_in[0] - a->light.w_in[1];
+    }
+    if (!a->general_an) {
+        memset(a->P_an, 0, sizeof a->P_an);
+        a->P_an[0][0] = a->light.mask[0];
+        a->P_an[1][1] = a->light.mask[1];
+    }
+    return cli_slab_opts_finish(CMD, &a->so);
+}
+
+/* Returns 0 to go on, 1 after --help, -1 on bad usage (one error line printed). */
+static int parse(int argc, char **argv, spectrum_args *a)
+{
+    memset(a, 0, sizeof *a);
+    cli_slab_opts_init(&a->so);
+    biref_spectral_config_default(&a->cfg);
+    a->method = BIREF_METHOD_ANALYTIC;
+    cli_light_default(&a->light);
+    biref_expansion_opts_default(&a->eopts);
+    a->stokes[0] = 1.0;
     static const struct option longopts[] = {CLI_SLAB_LONG_OPTIONS,
                                              {"order", required_argument, 0, OPT_ORDER},
                                              {"tolerance", required_argument, 0, OPT_TOLERANCE},
@@ -125,228 +229,166 @@ int cmd_spectrum(int argc, char **argv)
     optind = 1;
     int c;
     while ((c = getopt_long(argc, argv, ":h", longopts, NULL)) != -1) {
-        int r = cli_slab_opts_handle(CMD, &so, c, optarg);
-        if (r < 0) return CLI_EXIT_USAGE;
+        int r = cli_slab_opts_handle(CMD, &a->so, c, optarg);
+        if (r < 0) return -1;
         if (r > 0) continue;
-        switch (c) {
-        case 'h': help(); return CLI_EXIT_OK;
-        case OPT_METHOD:
-            if (biref_method_from_name(optarg, &method) != BIREF_OK)
-                return cli_error(CMD, "--method: expected analytic, numeric, ground-truth or expansion, got '%s'",
-                                 optarg),
-                       CLI_EXIT_USAGE;
-            break;
-        case OPT_SAMPLES:
-            if (cli_parse_int(CMD, "--samples", optarg, 1, MAX_SAMPLES, &samples)) return CLI_EXIT_USAGE;
-            break;
-        case OPT_CMF:
-            if (biref_cmf_kind_from_name(optarg, &cfg.cmf) != BIREF_OK)
-                return cli_error(CMD, "--cmf: expected cie1931 or wyman2013, got '%s'", optarg), CLI_EXIT_USAGE;
-            break;
-        case OPT_RANGE: {
-            double r2[2];
-            if (cli_parse_range_nm(CMD, "--range-nm", optarg, r2)) return CLI_EXIT_USAGE;
-            cfg.lambda_min_nm = r2[0];
-            cfg.lambda_max_nm = r2[1];
-            break;
-        }
-        case OPT_POL:
-            if (cli_parse_polarization(CMD, "--polarization", optarg, light.w_in)) return CLI_EXIT_USAGE;
-            break;
-        case OPT_ANALYZER: {
-            int g = cli_parse_general_analyzer(CMD, "--analyzer", optarg, P_an);
-            if (g < 0) return CLI_EXIT_USAGE;
-            if (g > 0) {
-                general_an = 1;
-                snprintf(an_text, sizeof an_text, "%s", optarg);
-            } else if (cli_parse_analyzer(CMD, "--analyzer", optarg, light.mask)) {
-                return CLI_EXIT_USAGE;
-            }
-            break;
-        }
-        case OPT_POLARIZER:
-            if (cli_parse_polarizer_state(CMD, "--polarizer", optarg, stokes)) return CLI_EXIT_USAGE;
-            general_in = 1;
-            snprintf(pol_text, sizeof pol_text, "%s", optarg);
-            break;
-        case OPT_STOKES:
-            if (cli_parse_stokes(CMD, "--stokes", optarg, stokes)) return CLI_EXIT_USAGE;
-            general_in = 1;
-            snprintf(pol_text, sizeof pol_text, "stokes:%s", optarg);
-            break;
-        case OPT_ORDER:
-            if (cli_parse_expansion_order(CMD, optarg, &eopts)) return CLI_EXIT_USAGE;
-            have_order = 1;
-            break;
-        case OPT_TOLERANCE:
-            if (cli_parse_expansion_tolerance(CMD, optarg, &eopts)) return CLI_EXIT_USAGE;
-            have_tol = 1;
-            break;
-        case OPT_JSON: json = 1; break;
-        default: cli_getopt_error(CMD, c, argv); return CLI_EXIT_USAGE;
-        }
+        r = handle_option(a, c, argv);
+        if (r) return r;
     }
-    if (optind < argc) return cli_error(CMD, "unexpected argument '%s'", argv[optind]), CLI_EXIT_USAGE;
-    /* --samples with another method would be silently ignored; refuse it so a typo in --method
-     * cannot masquerade as a numeric run. */
-    if (samples && method != BIREF_METHOD_NUMERIC)
-        return cli_error(CMD, "--samples: only valid with --method numeric (method is %s)", biref_method_name(method)),
-               CLI_EXIT_USAGE;
-    if ((have_order || have_tol) && method != BIREF_METHOD_EXPANSION)
-        return cli_error(CMD, "%s: only valid with --method expansion", have_order ? "--order" : "--tolerance"),
-               CLI_EXIT_USAGE;
-    if (have_order && have_tol) return cli_error(CMD, "--order and --tolerance exclude each other"), CLI_EXIT_USAGE;
-    const int general = general_in || general_an;
-    if (general && method == BIREF_METHOD_ANALYTIC)
-        return cli_error(CMD, "%s needs --method numeric, ground-truth or expansion (the paper's method handles s/p only)",
-                         general_in ? "--polarizer/--stokes" : "--analyzer linear/circular"),
-               CLI_EXIT_USAGE;
-    if (!general_in) {
-        /* The s/p fractions as a (diagonal) Stokes vector, for the general path. */
-        stokes[0] = 1.0;
-        stokes[1] = light.w_in[0] - light.w_in[1];
-    }
-    if (!general_an) {
-        memset(P_an, 0, sizeof P_an);
-        P_an[0][0] = light.mask[0];
-        P_an[1][1] = light.mask[1];
-    }
-    if (cli_slab_opts_finish(CMD, &so)) return CLI_EXIT_USAGE;
-    int n_samples = method == BIREF_METHOD_NUMERIC ? (samples ? (int)samples : DEFAULT_NUMERIC_SAMPLES)
-                    : method == BIREF_METHOD_GROUND_TRUTH ? BIREF_GROUND_TRUTH_SAMPLES : 0;
+    if (optind < argc) return cli_error(CMD, "unexpected argument '%s'", argv[optind]), -1;
+    return check_args(a);
+}
 
-    const double theta = so.theta_deg * M_PI / 180.0;
-    biref_slab_state st;
-    biref_status s = biref_slab_prepare(&so.slab, theta, &st);
+/* The light of the mixed colour: the paper's s/p model unless a general state or analyzer was
+ * asked for. */
+static void make_light(const spectrum_args *a, biref_light *l)
+{
+    if (!a->general_in && !a->general_an) {
+        biref_light_sp(a->light.w_in, a->light.mask, l); /* validated when parsed */
+        return;
+    }
+    biref_light_stokes(a->stokes, l); /* validated when parsed */
+    biref_light_set_analyzer(l, (const double complex(*)[2])a->P_an);
+}
+
+/* The integration. Returns a CLI exit code (one error line printed unless OK). */
+static int compute(const spectrum_args *a, spectrum_result *res)
+{
+    memset(res, 0, sizeof *res);
+    res->n_samples = a->method == BIREF_METHOD_NUMERIC        ? (a->samples ? (int)a->samples : DEFAULT_NUMERIC_SAMPLES)
+                     : a->method == BIREF_METHOD_GROUND_TRUTH ? BIREF_GROUND_TRUTH_SAMPLES
+                                                              : 0;
+    const double theta = a->so.theta_deg * M_PI / 180.0;
+    biref_status s = biref_slab_prepare(&a->so.slab, theta, &res->st);
     if (s != BIREF_OK) return cli_error(CMD, "%s", biref_status_string(s)), CLI_EXIT_FAIL;
 
     biref_spectral *sp = NULL;
-    s = biref_spectral_create(&cfg, &sp);
+    s = biref_spectral_create(&a->cfg, &sp);
     /* The range passed its own checks, so INVALID here means the CMFs vanish on the band. */
     if (s == BIREF_ERR_INVALID)
-        return cli_error(CMD, "--range-nm: the colour-matching functions are zero on %g-%g nm", cfg.lambda_min_nm,
-                         cfg.lambda_max_nm),
+        return cli_error(CMD, "--range-nm: the colour-matching functions are zero on %g-%g nm", a->cfg.lambda_min_nm,
+                         a->cfg.lambda_max_nm),
                CLI_EXIT_USAGE;
     if (s != BIREF_OK) return cli_error(CMD, "spectral context: %s", biref_status_string(s)), CLI_EXIT_FAIL;
-
-    biref_spectrum spec;
-    double T_xyz[3], R_xyz[3], T_rgb[3], R_rgb[3];
-    double complex C_in[2][2];
-    biref_stokes_to_coherency(stokes, C_in); /* validated when parsed */
-    int order_used[2] = {-1, -1};
-    if (n_samples) {
-        biref_numeric_plan *plan = NULL;
-        s = biref_numeric_plan_create(sp, n_samples, &plan);
-        if (s != BIREF_OK) {
-            biref_spectral_destroy(sp);
-            return cli_error(CMD, "numeric plan: %s", biref_status_string(s)), CLI_EXIT_FAIL;
-        }
-        biref_spectrum_numeric(plan, &st, &spec);
-        if (general) {
-            biref_spectrum_numeric_polarized(plan, &st, BIREF_TRANSMISSION, (const double complex(*)[2])C_in,
-                                             (const double complex(*)[2])P_an, T_xyz);
-            biref_spectrum_numeric_polarized(plan, &st, BIREF_REFLECTION, (const double complex(*)[2])C_in,
-                                             (const double complex(*)[2])P_an, R_xyz);
-        }
-        biref_numeric_plan_destroy(plan);
-    } else if (method == BIREF_METHOD_EXPANSION) {
-        s = biref_spectrum_expansion(sp, &st, &eopts, &spec);
-        for (int w = 0; w < 2 && s == BIREF_OK; w++)
-            s = biref_spectrum_expansion_polarized(sp, &st, w, (const double complex(*)[2])C_in,
-                                                   (const double complex(*)[2])P_an, &eopts, w ? R_xyz : T_xyz,
-                                                   &order_used[w]);
-        if (s != BIREF_OK) {
-            biref_spectral_destroy(sp);
-            return cli_error(CMD, "expansion: %s", biref_status_string(s)), CLI_EXIT_FAIL;
-        }
-    } else {
-        biref_spectrum_analytic(sp, &st, &spec);
+    biref_integrator_options io;
+    biref_integrator_options_default(&io);
+    io.method = a->method;
+    if (a->method == BIREF_METHOD_NUMERIC) io.samples = res->n_samples;
+    io.expansion = a->eopts;
+    biref_integrator *it = NULL;
+    s = biref_integrator_create(sp, &io, &it);
+    if (s != BIREF_OK) {
+        biref_spectral_destroy(sp);
+        return cli_error(CMD, "numeric plan: %s", biref_status_string(s)), CLI_EXIT_FAIL;
     }
+    biref_light light;
+    make_light(a, &light);
+    biref_integration mixed;
+    s = biref_integrate_spectrum(it, &res->st, &res->spec);
+    biref_status sm = s == BIREF_OK ? biref_integrate(it, &res->st, BIREF_SIDE_BOTH, &light, &mixed) : s;
+    biref_integrator_destroy(it);
     biref_spectral_destroy(sp);
-    if (!all_finite(&spec)) return cli_error(CMD, "numerical failure (non-finite result)"), CLI_EXIT_FAIL;
+    if (s != BIREF_OK || (sm != BIREF_OK && sm != BIREF_ERR_ILLCOND))
+        return cli_error(CMD, "expansion: %s", biref_status_string(s != BIREF_OK ? s : sm)), CLI_EXIT_FAIL;
+    if (sm != BIREF_OK || !all_finite(&res->spec))
+        return cli_error(CMD, "numerical failure (non-finite result)"), CLI_EXIT_FAIL;
+    memcpy(res->T_xyz, mixed.T, sizeof res->T_xyz);
+    memcpy(res->R_xyz, mixed.R, sizeof res->R_xyz);
+    memcpy(res->order_used, mixed.order_used, sizeof res->order_used);
+    biref_xyz_to_srgb(res->T_xyz, res->T_rgb);
+    biref_xyz_to_srgb(res->R_xyz, res->R_rgb);
+    return CLI_EXIT_OK;
+}
 
-    if (!general && method != BIREF_METHOD_EXPANSION) {
-        biref_spectrum_mix(spec.T, light.w_in, light.mask, T_xyz);
-        biref_spectrum_mix(spec.R, light.w_in, light.mask, R_xyz);
-    }
-    biref_xyz_to_srgb(T_xyz, T_rgb);
-    biref_xyz_to_srgb(R_xyz, R_rgb);
+static void names(const spectrum_args *a, char polbuf[48], const char **pol_name, const char **an_name)
+{
+    *pol_name = a->general_in ? a->pol_text : cli_polarization_name(a->light.w_in, polbuf, 48);
+    *an_name = a->general_an ? a->an_text : cli_analyzer_name(a->light.mask);
+}
+
+static int print_json(const spectrum_args *a, const spectrum_result *res)
+{
     char polbuf[48];
-    const char *pol_name = general_in ? pol_text : cli_polarization_name(light.w_in, polbuf, sizeof polbuf);
-    const char *an_name = general_an ? an_text : cli_analyzer_name(light.mask);
-    const char *cmf_name = biref_cmf_kind_name(cfg.cmf);
-
-    if (json) {
-        cJSON *root = cJSON_CreateObject();
-        cJSON_AddStringToObject(root, "method", biref_method_name(method));
-        if (n_samples)
-            cJSON_AddNumberToObject(root, "samples", n_samples);
-        else
-            cJSON_AddNullToObject(root, "samples");
-        cJSON_AddStringToObject(root, "cmf", cmf_name);
-        double range[2] = {cfg.lambda_min_nm, cfg.lambda_max_nm};
-        cJSON_AddItemToObject(root, "range_nm", cJSON_CreateDoubleArray(range, 2));
-        cJSON *in = cJSON_AddObjectToObject(root, "input");
-        cJSON_AddNumberToObject(in, "eta_o", so.slab.eta_o);
-        cJSON_AddNumberToObject(in, "eta_e", so.slab.eta_e);
-        cJSON_AddItemToObject(in, "axis", json_vec3(so.slab.axis));
-        cJSON_AddNumberToObject(in, "thickness_nm", so.slab.thickness_nm);
-        cJSON_AddNumberToObject(in, "theta_deg", so.theta_deg);
-        cJSON_AddNumberToObject(in, "eta_i", so.slab.eta_i);
-        cJSON_AddBoolToObject(root, "total_reflection", st.total_reflection);
-        cJSON_AddItemToObject(root, "T", xyz_pairs_json(spec.T));
-        cJSON_AddItemToObject(root, "R", xyz_pairs_json(spec.R));
-        cJSON *mx = cJSON_AddObjectToObject(root, "mixed");
-        cJSON *pol = cJSON_AddObjectToObject(mx, "polarization");
-        if (!general_in) {
-            cJSON_AddNumberToObject(pol, "s", light.w_in[0]);
-            cJSON_AddNumberToObject(pol, "p", light.w_in[1]);
-        } else {
-            cJSON_AddStringToObject(pol, "state", pol_text);
-        }
-        cJSON_AddItemToObject(pol, "stokes", cJSON_CreateDoubleArray(stokes, 4));
-        if (method == BIREF_METHOD_EXPANSION) {
-            cJSON *ord = cJSON_AddObjectToObject(root, "expansion_order");
-            cJSON_AddNumberToObject(ord, "T", order_used[0]);
-            cJSON_AddNumberToObject(ord, "R", order_used[1]);
-        }
-        cJSON_AddStringToObject(mx, "analyzer", an_name);
-        cJSON_AddItemToObject(mx, "T_xyz", json_vec3(T_xyz));
-        cJSON_AddItemToObject(mx, "R_xyz", json_vec3(R_xyz));
-        cJSON_AddItemToObject(mx, "T_srgb", json_vec3(T_rgb));
-        cJSON_AddItemToObject(mx, "R_srgb", json_vec3(R_rgb));
-        cJSON_AddStringToObject(mx, "srgb_note", "encoded sRGB (IEC 61966-2-1), white E -> (1,1,1), not clamped");
-        return json_print_and_free(root) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
-    }
-
-    printf("slab: eta_o %.6g, eta_e %.6g, axis (%.4f, %.4f, %.4f), d %.6g um, eta_i %.4g, theta %.4g deg%s\n",
-           so.slab.eta_o, so.slab.eta_e, so.slab.axis[0], so.slab.axis[1], so.slab.axis[2],
-           so.slab.thickness_nm / 1e3, so.slab.eta_i, so.theta_deg,
-           st.total_reflection ? "  (total reflection inside)" : "");
-    if (n_samples)
-        printf("method %s (%d samples), cmf %s, band %g-%g nm\n\n", biref_method_name(method), n_samples, cmf_name,
-               cfg.lambda_min_nm, cfg.lambda_max_nm);
+    const char *pol_name, *an_name;
+    names(a, polbuf, &pol_name, &an_name);
+    const biref_slab *slab = &a->so.slab;
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "method", biref_method_name(a->method));
+    if (res->n_samples)
+        cJSON_AddNumberToObject(root, "samples", res->n_samples);
     else
-        printf("method %s, cmf %s, band %g-%g nm\n\n", biref_method_name(method), cmf_name, cfg.lambda_min_nm,
-               cfg.lambda_max_nm);
+        cJSON_AddNullToObject(root, "samples");
+    cJSON_AddStringToObject(root, "cmf", biref_cmf_kind_name(a->cfg.cmf));
+    double range[2] = {a->cfg.lambda_min_nm, a->cfg.lambda_max_nm};
+    cJSON_AddItemToObject(root, "range_nm", cJSON_CreateDoubleArray(range, 2));
+    cJSON *in = cJSON_AddObjectToObject(root, "input");
+    cJSON_AddNumberToObject(in, "eta_o", slab->eta_o);
+    cJSON_AddNumberToObject(in, "eta_e", slab->eta_e);
+    cJSON_AddItemToObject(in, "axis", json_vec3(slab->axis));
+    cJSON_AddNumberToObject(in, "thickness_nm", slab->thickness_nm);
+    cJSON_AddNumberToObject(in, "theta_deg", a->so.theta_deg);
+    cJSON_AddNumberToObject(in, "eta_i", slab->eta_i);
+    cJSON_AddBoolToObject(root, "total_reflection", res->st.total_reflection);
+    cJSON_AddItemToObject(root, "T", xyz_pairs_json(res->spec.T));
+    cJSON_AddItemToObject(root, "R", xyz_pairs_json(res->spec.R));
+    cJSON *mx = cJSON_AddObjectToObject(root, "mixed");
+    cJSON *pol = cJSON_AddObjectToObject(mx, "polarization");
+    if (!a->general_in) {
+        cJSON_AddNumberToObject(pol, "s", a->light.w_in[0]);
+        cJSON_AddNumberToObject(pol, "p", a->light.w_in[1]);
+    } else {
+        cJSON_AddStringToObject(pol, "state", a->pol_text);
+    }
+    cJSON_AddItemToObject(pol, "stokes", cJSON_CreateDoubleArray(a->stokes, 4));
+    if (a->method == BIREF_METHOD_EXPANSION) {
+        cJSON *ord = cJSON_AddObjectToObject(root, "expansion_order");
+        cJSON_AddNumberToObject(ord, "T", res->order_used[0]);
+        cJSON_AddNumberToObject(ord, "R", res->order_used[1]);
+    }
+    cJSON_AddStringToObject(mx, "analyzer", an_name);
+    cJSON_AddItemToObject(mx, "T_xyz", json_vec3(res->T_xyz));
+    cJSON_AddItemToObject(mx, "R_xyz", json_vec3(res->R_xyz));
+    cJSON_AddItemToObject(mx, "T_srgb", json_vec3(res->T_rgb));
+    cJSON_AddItemToObject(mx, "R_srgb", json_vec3(res->R_rgb));
+    cJSON_AddStringToObject(mx, "srgb_note", "encoded sRGB (IEC 61966-2-1), white E -> (1,1,1), not clamped");
+    return json_print_and_free(root) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
+}
+
+static int print_text(const spectrum_args *a, const spectrum_result *res)
+{
+    char polbuf[48];
+    const char *pol_name, *an_name;
+    names(a, polbuf, &pol_name, &an_name);
+    const biref_slab *slab = &a->so.slab;
+    const char *cmf_name = biref_cmf_kind_name(a->cfg.cmf);
+    printf("slab: eta_o %.6g, eta_e %.6g, axis (%.4f, %.4f, %.4f), d %.6g um, eta_i %.4g, theta %.4g deg%s\n",
+           slab->eta_o, slab->eta_e, slab->axis[0], slab->axis[1], slab->axis[2], slab->thickness_nm / 1e3,
+           slab->eta_i, a->so.theta_deg, res->st.total_reflection ? "  (total reflection inside)" : "");
+    if (res->n_samples)
+        printf("method %s (%d samples), cmf %s, band %g-%g nm\n\n", biref_method_name(a->method), res->n_samples,
+               cmf_name, a->cfg.lambda_min_nm, a->cfg.lambda_max_nm);
+    else
+        printf("method %s, cmf %s, band %g-%g nm\n\n", biref_method_name(a->method), cmf_name, a->cfg.lambda_min_nm,
+               a->cfg.lambda_max_nm);
     printf("Band-normalised XYZ (flat spectrum = 1,1,1), input -> output:\n");
     printf("  %-8s %-30s %-30s\n", "", "transmission X Y Z", "reflection X Y Z");
+    const biref_spectrum *spec = &res->spec;
     for (int i = 0; i < 2; i++)
         for (int o = 0; o < 2; o++) {
             char t[64], r[64];
-            snprintf(t, sizeof t, "%.6f %.6f %.6f", spec.T[i][o][0], spec.T[i][o][1], spec.T[i][o][2]);
-            snprintf(r, sizeof r, "%.6f %.6f %.6f", spec.R[i][o][0], spec.R[i][o][1], spec.R[i][o][2]);
+            snprintf(t, sizeof t, "%.6f %.6f %.6f", spec->T[i][o][0], spec->T[i][o][1], spec->T[i][o][2]);
+            snprintf(r, sizeof r, "%.6f %.6f %.6f", spec->R[i][o][0], spec->R[i][o][1], spec->R[i][o][2]);
             printf("  %s -> %s   %-30s %-30s\n", SP[i], SP[o], t, r);
         }
-    if (general_in)
-        printf("\nMixed: polarization %s (Stokes %.4g, %.4g, %.4g, %.4g), analyzer %s\n", pol_name, stokes[0],
-               stokes[1], stokes[2], stokes[3], an_name);
+    if (a->general_in)
+        printf("\nMixed: polarization %s (Stokes %.4g, %.4g, %.4g, %.4g), analyzer %s\n", pol_name, a->stokes[0],
+               a->stokes[1], a->stokes[2], a->stokes[3], an_name);
     else
-        printf("\nMixed: polarization %s (s %.4g, p %.4g), analyzer %s\n", pol_name, light.w_in[0], light.w_in[1],
-               an_name);
+        printf("\nMixed: polarization %s (s %.4g, p %.4g), analyzer %s\n", pol_name, a->light.w_in[0],
+               a->light.w_in[1], an_name);
     const int tty = isatty(STDOUT_FILENO);
     const char *lbl[2] = {"T", "R"};
-    const double *xyz[2] = {T_xyz, R_xyz}, *rgb[2] = {T_rgb, R_rgb};
+    const double *xyz[2] = {res->T_xyz, res->R_xyz}, *rgb[2] = {res->T_rgb, res->R_rgb};
     for (int k = 0; k < 2; k++) {
         printf("  %s  XYZ %.6f %.6f %.6f   sRGB %.4f %.4f %.4f", lbl[k], xyz[k][0], xyz[k][1], xyz[k][2], rgb[k][0],
                rgb[k][1], rgb[k][2]);
@@ -358,4 +400,15 @@ int cmd_spectrum(int argc, char **argv)
     }
     printf("  (sRGB encoded, unclamped%s)\n", tty ? "; swatch clamped to [0,1]" : "");
     return CLI_EXIT_OK;
+}
+
+int cmd_spectrum(int argc, char **argv)
+{
+    spectrum_args a;
+    const int p = parse(argc, argv, &a);
+    if (p) return p > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
+    spectrum_result res;
+    const int rc = compute(&a, &res);
+    if (rc != CLI_EXIT_OK) return rc;
+    return a.json ? print_json(&a, &res) : print_text(&a, &res);
 }

@@ -16,8 +16,12 @@
 #include "biref/common.h"
 #include "biref/optics.h"
 #include "biref/color.h"
+#include "biref/polarization.h"
 #include "biref/spectral.h"
+#include "biref/integrator.h"
 #include "biref/render.h"
 #include "biref/photoelastic.h"
+#include "biref/shading.h"
+#include "biref/gpu.h"
 
 #endif /* BIREF_BIREF_H */

@@ -44,20 +44,20 @@ typedef enum {
 
 /* Un-normalised x̄, ȳ, z̄ at lambda_nm. An unknown kind or a non-finite
  * wavelength gives (0, 0, 0). */
-void biref_cmf_eval(biref_cmf_kind kind, double lambda_nm, double xyz[3]);
+BIREF_API void biref_cmf_eval(biref_cmf_kind kind, double lambda_nm, double xyz[3]);
 
 /* "cie1931" or "wyman2013" (exact, case-sensitive). BIREF_ERR_INVALID for
  * anything else or NULL arguments; *out is untouched on error. */
-biref_status biref_cmf_kind_from_name(const char *name, biref_cmf_kind *out);
+BIREF_API biref_status biref_cmf_kind_from_name(const char *name, biref_cmf_kind *out);
 
 /* The inverse: "cie1931", "wyman2013", or NULL for an unknown kind. */
-const char *biref_cmf_kind_name(biref_cmf_kind kind);
+BIREF_API const char *biref_cmf_kind_name(biref_cmf_kind kind);
 
 /* integral[j] = ∫_{lmin}^{lmax} cmf_j(λ) dλ (nm). Exact to rounding: the
  * table's interpolant is integrated piecewise-linearly, the Wyman fit with
  * erf(). BIREF_ERR_INVALID for an unknown kind, non-finite bounds or
  * lmin >= lmax. Integrals may be 0 (a range outside the table). */
-biref_status biref_cmf_band_integrals(biref_cmf_kind kind, double lmin, double lmax, double integral[3]);
+BIREF_API biref_status biref_cmf_band_integrals(biref_cmf_kind kind, double lmin, double lmax, double integral[3]);
 
 /* Band-normalised sensitivity functions Λ_j (paper §5.1): a small value type,
  * fill it with biref_cmf_band_init and share it freely between threads. */
@@ -70,11 +70,11 @@ typedef struct {
 
 /* BIREF_ERR_INVALID as for biref_cmf_band_integrals, or if any integral is
  * not > 0 (then there is nothing to normalise by). */
-biref_status biref_cmf_band_init(biref_cmf_band *band, biref_cmf_kind kind, double lmin, double lmax);
+BIREF_API biref_status biref_cmf_band_init(biref_cmf_band *band, biref_cmf_kind kind, double lmin, double lmax);
 
 /* Λ_j(λ) = cmf_j(λ) / integral[j] for λ in [lmin, lmax], 0 outside, in 1/nm.
  * ∫ Λ_j dλ = 1, so a flat spectrum integrates to (1, 1, 1). */
-void biref_cmf_band_eval(const biref_cmf_band *band, double lambda_nm, double lam[3]);
+BIREF_API void biref_cmf_band_eval(const biref_cmf_band *band, double lambda_nm, double lam[3]);
 
 /* ------------------------------------------------------------------------ */
 /* XYZ (white E = (1,1,1)) <-> sRGB (IEC 61966-2-1)                          */
@@ -86,31 +86,31 @@ void biref_cmf_band_eval(const biref_cmf_band *band, double lambda_nm, double la
  * library stores it as a constant that tests re-derive (see
  * biref_srgb_derive_matrices). White E (1,1,1) -> (1,1,1). No clamping:
  * out-of-gamut colours give components < 0 or > 1. */
-void biref_xyz_to_linear_srgb(const double xyz[3], double rgb[3]);
-void biref_linear_srgb_to_xyz(const double rgb[3], double xyz[3]);
+BIREF_API void biref_xyz_to_linear_srgb(const double xyz[3], double rgb[3]);
+BIREF_API void biref_linear_srgb_to_xyz(const double rgb[3], double xyz[3]);
 
 /* Re-derives both matrices above from first principles (chromaticities and
  * the Bradford matrix); rgb_from_xyz = M, xyz_from_rgb = M^-1. Row-major:
  * rgb[i] = Σ_k m[i][k] xyz[k]. For tests and documentation. */
-void biref_srgb_derive_matrices(double rgb_from_xyz[3][3], double xyz_from_rgb[3][3]);
+BIREF_API void biref_srgb_derive_matrices(double rgb_from_xyz[3][3], double xyz_from_rgb[3][3]);
 
 /* IEC 61966-2-1 transfer function, extended as an odd function
  * (f(-v) = -f(v)) so out-of-range values round-trip; no clamping. The
  * linear/power break points are the segments' exact intersection rather
  * than the standard's rounded 0.0031308 / 0.04045 (differs from the literal
  * standard by < 3e-8; makes encode and decode exact, monotone inverses). */
-double biref_srgb_encode(double linear);
-double biref_srgb_decode(double encoded);
+BIREF_API double biref_srgb_encode(double linear);
+BIREF_API double biref_srgb_decode(double encoded);
 
 /* XYZ (white E) -> encoded sRGB (non-linear, unclamped). */
-void biref_xyz_to_srgb(const double xyz[3], double srgb[3]);
-void biref_srgb_to_xyz(const double srgb[3], double xyz[3]);
+BIREF_API void biref_xyz_to_srgb(const double xyz[3], double srgb[3]);
+BIREF_API void biref_srgb_to_xyz(const double srgb[3], double xyz[3]);
 
 /* 8-bit encoded sRGB <-> XYZ (white E). biref_xyz_to_srgb8 clamps each
  * encoded component to [0, 1] and rounds to nearest (NaN -> 0). */
-void biref_srgb8_to_linear(const unsigned char rgb[3], double linear[3]);
-void biref_srgb8_to_xyz(const unsigned char rgb[3], double xyz[3]);
-void biref_xyz_to_srgb8(const double xyz[3], unsigned char rgb[3]);
+BIREF_API void biref_srgb8_to_linear(const unsigned char rgb[3], double linear[3]);
+BIREF_API void biref_srgb8_to_xyz(const unsigned char rgb[3], double xyz[3]);
+BIREF_API void biref_xyz_to_srgb8(const double xyz[3], unsigned char rgb[3]);
 
 /* ------------------------------------------------------------------------ */
 /* CIELAB and CIEDE2000                                                      */
@@ -120,16 +120,16 @@ void biref_xyz_to_srgb8(const double xyz[3], unsigned char rgb[3]);
  * same scale as xyz; NULL means white E = (1,1,1), the band-normalised
  * white). The white itself maps to (100, 0, 0). Uses lcms2's cmsXYZ2Lab
  * with an explicit white point. */
-void biref_xyz_to_lab(const double xyz[3], const double white[3], double lab[3]);
-void biref_lab_to_xyz(const double lab[3], const double white[3], double xyz[3]);
+BIREF_API void biref_xyz_to_lab(const double xyz[3], const double white[3], double lab[3]);
+BIREF_API void biref_lab_to_xyz(const double lab[3], const double white[3], double xyz[3]);
 
 /* CIEDE2000 colour difference (k_L = k_C = k_H = 1), Sharma, Wu & Dalal 2005.
  * Symmetric. Uses lcms2's cmsCIE2000DeltaE (verified against all 34 of
  * Sharma's pairs, see docs/COLOR.md). */
-double biref_ciede2000(const double lab1[3], const double lab2[3]);
+BIREF_API double biref_ciede2000(const double lab1[3], const double lab2[3]);
 
 /* ΔE00 between two XYZ colours relative to white E = (1,1,1). */
-double biref_delta_e00_xyz(const double xyz1[3], const double xyz2[3]);
+BIREF_API double biref_delta_e00_xyz(const double xyz1[3], const double xyz2[3]);
 
 #ifdef __cplusplus
 }

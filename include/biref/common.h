@@ -4,6 +4,33 @@
 
 #include <stddef.h>
 
+/* Complex amplitudes in public structs: C99 double _Complex in C, std::complex<double> in C++.
+ * Both are laid out as double[2] {re, im} (C17 6.2.5p13, C++ [complex.numbers]), so one struct
+ * definition serves both languages and the library's <complex.h> arithmetic. */
+#ifdef __cplusplus
+#include <complex>
+typedef std::complex<double> biref_complex;
+#else
+#include <complex.h>
+typedef double _Complex biref_complex;
+#endif
+
+/* Marks the public API. The library is built with hidden visibility, so only declarations
+ * carrying BIREF_API are exported from the shared library. */
+#if defined(BIREF_API)
+/* defined by the user (e.g. empty, for tools that parse the declarations) */
+#elif defined(_WIN32) && defined(BIREF_SHARED_LIBRARY)
+#  if defined(BIREF_BUILDING_LIBRARY)
+#    define BIREF_API __declspec(dllexport)
+#  else
+#    define BIREF_API __declspec(dllimport)
+#  endif
+#elif defined(__GNUC__) || defined(__clang__)
+#  define BIREF_API __attribute__((visibility("default")))
+#else
+#  define BIREF_API
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -17,7 +44,7 @@ typedef enum {
     BIREF_ERR_ILLCOND = 5   /* method cannot give a trustworthy answer here */
 } biref_status;
 
-const char *biref_status_string(biref_status s);
+BIREF_API const char *biref_status_string(biref_status s);
 
 #ifdef __cplusplus
 }

@@ -2,7 +2,6 @@
 #ifndef BIREF_OPTICS_H
 #define BIREF_OPTICS_H
 
-#include <complex.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -31,16 +30,16 @@ typedef struct {
     int isotropic;
 } biref_medium;
 
-biref_medium biref_medium_isotropic(double eta);
-biref_medium biref_medium_uniaxial(double eta_o, double eta_e, const double axis[3]);
+BIREF_API biref_medium biref_medium_isotropic(double eta);
+BIREF_API biref_medium biref_medium_uniaxial(double eta_o, double eta_e, const double axis[3]);
 
 /* The unit vector along an optic axis, scaled by its largest component first so that huge or tiny
  * finite axes neither overflow nor underflow. BIREF_ERR_INVALID for a non-finite axis or a zero
  * one (|axis| <= 1e-12). unit may alias axis. */
-biref_status biref_axis_normalize(const double axis[3], double unit[3]);
+BIREF_API biref_status biref_axis_normalize(const double axis[3], double unit[3]);
 
 /* Checks a medium; on failure writes a one-line reason into msg (may be NULL). */
-biref_status biref_medium_check(const biref_medium *m, char *msg, size_t msg_len);
+BIREF_API biref_status biref_medium_check(const biref_medium *m, char *msg, size_t msg_len);
 
 /* Mode order used in every 4-vector below. */
 enum {
@@ -53,16 +52,16 @@ enum {
 /* Normal modes of a medium for incidence parameter K (paper §3, eqs. 1–6). */
 typedef struct {
     double K;
-    double complex q[4];         /* normal components of the wave vectors (units of k0) */
-    double complex E[4][3];      /* unit electric fields, Hermitian norm 1 */
-    double complex H[4][3];      /* k x E (units of k0 / (mu0 c)) */
+    biref_complex q[4];         /* normal components of the wave vectors (units of k0) */
+    biref_complex E[4][3];      /* unit electric fields, Hermitian norm 1 */
+    biref_complex H[4][3];      /* k x E (units of k0 / (mu0 c)) */
     double poynting[4][3];       /* unit time-averaged Poynting directions (eq. 4) */
     double eta_eff[4];           /* |Re k| = sqrt(q^2 + K^2) for propagating modes (eq. 5) */
     double K_max_o, K_max_e;     /* maximal incidence parameters (eq. 6, corrected) */
     int evanescent_o, evanescent_e;
 } biref_modes;
 
-biref_status biref_medium_modes(const biref_medium *m, double K, biref_modes *out);
+BIREF_API biref_status biref_medium_modes(const biref_medium *m, double K, biref_modes *out);
 
 /* Fresnel coefficients of a plane interface between two media (appendix A),
  * obtained by solving the boundary conditions (tangential E and H continuous).
@@ -70,14 +69,14 @@ biref_status biref_medium_modes(const biref_medium *m, double K, biref_modes *ou
  * 0/1 meaning s/p in an isotropic medium and o/e in a uniaxial one.
  * Amplitudes refer to the unit mode fields of biref_medium_modes. */
 typedef struct {
-    double complex r_down[2][2]; /* incident from above -> reflected up, upper medium */
-    double complex t_down[2][2]; /* incident from above -> transmitted down, lower medium */
-    double complex r_up[2][2];   /* incident from below -> reflected down, lower medium */
-    double complex t_up[2][2];   /* incident from below -> transmitted up, upper medium */
+    biref_complex r_down[2][2]; /* incident from above -> reflected up, upper medium */
+    biref_complex t_down[2][2]; /* incident from above -> transmitted down, lower medium */
+    biref_complex r_up[2][2];   /* incident from below -> reflected down, lower medium */
+    biref_complex t_up[2][2];   /* incident from below -> transmitted up, upper medium */
 } biref_interface;
 
-biref_status biref_interface_solve(const biref_medium *upper, const biref_medium *lower, double K,
-                                   biref_interface *out);
+BIREF_API biref_status biref_interface_solve(const biref_medium *upper, const biref_medium *lower, double K,
+                                             biref_interface *out);
 
 /* ------------------------------------------------------------------------- */
 /* Slab                                                                       */
@@ -91,12 +90,12 @@ typedef struct {
 } biref_slab;
 
 /* Checks a slab and an angle; one-line reason into msg. theta must be in [0, pi/2). */
-biref_status biref_slab_check(const biref_slab *slab, char *msg, size_t msg_len);
-biref_status biref_theta_check(double theta_rad, char *msg, size_t msg_len);
+BIREF_API biref_status biref_slab_check(const biref_slab *slab, char *msg, size_t msg_len);
+BIREF_API biref_status biref_theta_check(double theta_rad, char *msg, size_t msg_len);
 
 /* 2x2 complex Jones matrix, indexed [input][output] with BIREF_S / BIREF_P. */
 typedef struct {
-    double complex m[2][2];
+    biref_complex m[2][2];
 } biref_jones;
 
 /* Everything about a slab at one incidence angle that does not depend on the
@@ -110,12 +109,12 @@ typedef struct {
     biref_interface bottom;     /* slab (above) -> ambient (below), at y = -d */
     /* Optical path of one vertical crossing of each leg type, in nm: the phase
      * of a leg is (2 pi / lambda) * opl. Complex for evanescent legs. */
-    double complex opl_down[2]; /* [o, e]: -q_down * d */
-    double complex opl_up[2];   /* [o, e]:  q_up * d */
+    biref_complex opl_down[2]; /* [o, e]: -q_down * d */
+    biref_complex opl_up[2];   /* [o, e]:  q_up * d */
     int total_reflection;       /* some mode inside is evanescent (K >= K_max) */
 } biref_slab_state;
 
-biref_status biref_slab_prepare(const biref_slab *slab, double theta_rad, biref_slab_state *st);
+BIREF_API biref_status biref_slab_prepare(const biref_slab *slab, double theta_rad, biref_slab_state *st);
 
 /* The same slab lit from the other face: the state in the frame rotated by 180 degrees about z
  * (x -> -x, y -> -y; axis (a, b, c) -> (-a, -b, c)), obtained by relabelling the interface
@@ -123,25 +122,25 @@ biref_status biref_slab_prepare(const biref_slab *slab, double theta_rad, biref_
  * equals biref_slab_prepare with the rotated axis, amplitudes included (docs/PHYSICS.md §3).
  * A renderer that needs transmission (light from behind) and reflection (light from the
  * front) at one hit point prepares once and flips. out may not alias in. */
-void biref_slab_state_flip(const biref_slab_state *in, biref_slab_state *out);
+BIREF_API void biref_slab_state_flip(const biref_slab_state *in, biref_slab_state *out);
 
 /* All orders summed in closed form (paper eq. 17, and its reflection analogue).
  * Transmission is referred to the plane y = -d, reflection to y = 0.
  * Either output may be NULL. */
-void biref_slab_jones_at(const biref_slab_state *st, double lambda_nm, biref_jones *T, biref_jones *R);
+BIREF_API void biref_slab_jones_at(const biref_slab_state *st, double lambda_nm, biref_jones *T, biref_jones *R);
 
 /* One-call convenience: prepare + evaluate. */
-biref_status biref_slab_jones(const biref_slab *slab, double theta_rad, double lambda_nm, biref_jones *T,
-                              biref_jones *R);
+BIREF_API biref_status biref_slab_jones(const biref_slab *slab, double theta_rad, double lambda_nm, biref_jones *T,
+                                        biref_jones *R);
 
 /* Independent reference: 4x4 Berreman transfer matrix of the same slab,
  * eigen-decomposed numerically (LAPACK). Same planes and bases as above.
  * Returns BIREF_ERR_ILLCOND when evanescent growth makes it untrustworthy. */
-biref_status biref_slab_jones_tmm(const biref_slab *slab, double theta_rad, double lambda_nm, biref_jones *T,
-                                  biref_jones *R);
+BIREF_API biref_status biref_slab_jones_tmm(const biref_slab *slab, double theta_rad, double lambda_nm, biref_jones *T,
+                                            biref_jones *R);
 
 /* Power fractions |J[in][out]|^2 (same medium on both sides, paper §4). */
-void biref_jones_intensity(const biref_jones *J, double out[2][2]);
+BIREF_API void biref_jones_intensity(const biref_jones *J, double out[2][2]);
 
 /* The path expansion (paper §4, eqs. 12–16). A path is a sequence of legs
  * inside the slab; order n = number of internal double reflections.
@@ -149,8 +148,8 @@ void biref_jones_intensity(const biref_jones *J, double out[2][2]);
  * (n >= 1) has n down and n up legs; reflection order 0 is the direct
  * reflection off the top surface. */
 typedef struct {
-    double complex amp[2][2];  /* [input s/p][output s/p], wavelength independent */
-    double complex opl_nm;     /* phase = 2 pi / lambda * opl_nm */
+    biref_complex amp[2][2];  /* [input s/p][output s/p], wavelength independent */
+    biref_complex opl_nm;     /* phase = 2 pi / lambda * opl_nm */
     uint32_t legs;             /* bit i set: leg i (in travel order) is extraordinary */
     uint8_t order;
     uint8_t n_down_e, n_up_e;  /* counts of extraordinary down / up legs */
@@ -160,11 +159,11 @@ typedef struct {
 enum { BIREF_TRANSMISSION = 0, BIREF_REFLECTION = 1 };
 
 /* Number of paths of orders 0..max_order (max_order <= 12). */
-size_t biref_path_count(int which, int max_order);
+BIREF_API size_t biref_path_count(int which, int max_order);
 
 /* Writes the paths of orders 0..max_order into out (capacity cap) in order of
  * increasing order; returns the number written or 0 if cap is too small. */
-size_t biref_slab_paths(const biref_slab_state *st, int which, int max_order, biref_path *out, size_t cap);
+BIREF_API size_t biref_slab_paths(const biref_slab_state *st, int which, int max_order, biref_path *out, size_t cap);
 
 #ifdef __cplusplus
 }

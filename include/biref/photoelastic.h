@@ -17,10 +17,10 @@
 #ifndef BIREF_PHOTOELASTIC_H
 #define BIREF_PHOTOELASTIC_H
 
-#include <complex.h>
 #include <stddef.h>
 
 #include "biref/common.h"
+#include "biref/integrator.h"
 #include "biref/spectral.h"
 
 #ifdef __cplusplus
@@ -43,14 +43,14 @@ typedef struct {
 } biref_pe_material;
 
 /* Presets: "polycarbonate", "epoxy", "pmma", "glass". BIREF_ERR_INVALID for other names. */
-biref_status biref_pe_material_preset(const char *name, biref_pe_material *out);
+BIREF_API biref_status biref_pe_material_preset(const char *name, biref_pe_material *out);
 /* The i-th preset (i < biref_pe_material_count()), for listings. */
-size_t biref_pe_material_count(void);
-const biref_pe_material *biref_pe_material_at(size_t i);
+BIREF_API size_t biref_pe_material_count(void);
+BIREF_API const biref_pe_material *biref_pe_material_at(size_t i);
 /* Checks n0 and C (finite, n0 >= 1, C > 0); one-line reason into msg. */
-biref_status biref_pe_material_check(const biref_pe_material *m, char *msg, size_t msg_len);
+BIREF_API biref_status biref_pe_material_check(const biref_pe_material *m, char *msg, size_t msg_len);
 /* Material fringe constant f_sigma = lambda / C in N/m: N = h (sigma1 - sigma2) / f_sigma. */
-double biref_pe_fringe_constant(const biref_pe_material *m, double lambda_nm);
+BIREF_API double biref_pe_fringe_constant(const biref_pe_material *m, double lambda_nm);
 
 /* In-plane stress tensor (plane stress, sigma_zz = tau_xz = tau_yz = 0), Pa. */
 typedef struct {
@@ -65,21 +65,21 @@ typedef struct {
     double cos2phi, sin2phi; /* of 2 phi, without trigonometry */
 } biref_pe_principal;
 
-void biref_pe_principal_of(const biref_pe_stress *s, biref_pe_principal *out);
+BIREF_API void biref_pe_principal_of(const biref_pe_stress *s, biref_pe_principal *out);
 
 /* The uniaxial slab that models the plate at one point (docs/PHOTOELASTICITY.md, "Model"):
  * optic axis in the plate plane along principal direction 1, eta_e = n1 = n0 + C (s1 - s2),
  * eta_o = n2 = n0; thickness h; surrounding index eta_i. */
-biref_slab biref_pe_slab_at(const biref_pe_material *m, double thickness_m, double eta_i,
-                            const biref_pe_principal *p);
+BIREF_API biref_slab biref_pe_slab_at(const biref_pe_material *m, double thickness_m, double eta_i,
+                                      const biref_pe_principal *p);
 
 /* For oblique viewing: the uniaxial slab closest to the biaxial plate. The true third index
  * n3 = n0 + C2 (s1 + s2) differs from n2 by -C s2 and from n1 by -C s1 (docs, "Model"); the axis
  * goes along the principal direction whose stress is larger in magnitude, so that the two
  * indices the model makes equal are the two closest ones. At normal incidence this is the same
  * optical element as biref_pe_slab_at (up to a common index shift). */
-biref_slab biref_pe_slab_best(const biref_pe_material *m, double thickness_m, double eta_i,
-                              const biref_pe_principal *p);
+BIREF_API biref_slab biref_pe_slab_best(const biref_pe_material *m, double thickness_m, double eta_i,
+                                        const biref_pe_principal *p);
 
 /* ------------------------------------------------------------------------ */
 /* Stress fields (closed forms)                                              */
@@ -88,15 +88,15 @@ biref_slab biref_pe_slab_best(const biref_pe_material *m, double thickness_m, do
 /* Disk of radius R and thickness h under diametral compression P (N) applied at (0, +-R):
  * two Flamant point loads plus uniform tension P / (pi R h) (Frocht; Timoshenko & Goodier).
  * Meaningful for x^2 + y^2 <= R^2; infinite at the load points. */
-void biref_pe_disk_stress(double R, double h, double P, double x, double y, biref_pe_stress *out);
+BIREF_API void biref_pe_disk_stress(double R, double h, double P, double x, double y, biref_pe_stress *out);
 
 /* Infinite plate with a circular hole of radius a at the origin under remote uniaxial tension
  * S (Pa) along x (Kirsch 1898). Meaningful for x^2 + y^2 >= a^2. */
-void biref_pe_kirsch_stress(double a, double S, double x, double y, biref_pe_stress *out);
+BIREF_API void biref_pe_kirsch_stress(double a, double S, double x, double y, biref_pe_stress *out);
 
 /* Beam of depth H (along y, centred on y = 0) and thickness h in pure bending by a moment M
  * (N m): sigma_xx = M y / I with I = h H^3 / 12; positive M stretches the fibres at y > 0. */
-void biref_pe_beam_stress(double H, double h, double M, double x, double y, biref_pe_stress *out);
+BIREF_API void biref_pe_beam_stress(double H, double h, double M, double x, double y, biref_pe_stress *out);
 
 /* A user-supplied field on a regular grid (CSV, see biref_pe_grid_parse). */
 typedef struct biref_pe_grid biref_pe_grid;
@@ -106,17 +106,27 @@ typedef struct biref_pe_grid biref_pe_grid;
  * at least 2 x 2 nodes. Blank lines and lines starting with '#' are ignored; CR LF accepted.
  * On failure: BIREF_ERR_INVALID and one line "line N: reason" (or "reason" when no line is
  * to blame) in msg. */
-biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **out, char *msg, size_t msg_len);
+BIREF_API biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **out, char *msg, size_t msg_len);
 /* Reads and parses a file; BIREF_ERR_IO with "cannot read: ..." if it cannot be read. */
-biref_status biref_pe_grid_load(const char *path, biref_pe_grid **out, char *msg, size_t msg_len);
-void biref_pe_grid_destroy(biref_pe_grid *g);
+BIREF_API biref_status biref_pe_grid_load(const char *path, biref_pe_grid **out, char *msg, size_t msg_len);
+BIREF_API void biref_pe_grid_destroy(biref_pe_grid *g);
 /* Grid extent in metres: xmin, xmax, ymin, ymax; and the node counts. */
-void biref_pe_grid_bounds(const biref_pe_grid *g, double bounds[4]);
-void biref_pe_grid_size(const biref_pe_grid *g, int *nx, int *ny);
+BIREF_API void biref_pe_grid_bounds(const biref_pe_grid *g, double bounds[4]);
+BIREF_API void biref_pe_grid_size(const biref_pe_grid *g, int *nx, int *ny);
 /* Bilinear interpolation; returns 0 (and leaves out untouched) outside the grid's extent. */
-int biref_pe_grid_stress(const biref_pe_grid *g, double x, double y, biref_pe_stress *out);
+BIREF_API int biref_pe_grid_stress(const biref_pe_grid *g, double x, double y, biref_pe_stress *out);
 
-typedef enum { BIREF_PE_DISK = 0, BIREF_PE_HOLE = 1, BIREF_PE_BEAM = 2, BIREF_PE_GRID = 3 } biref_pe_field_kind;
+/* Scattered nodes from a finite-element export, interpolated over their Delaunay triangulation
+ * (linear in each triangle); see "Nodes" below. */
+typedef struct biref_pe_mesh biref_pe_mesh;
+
+typedef enum {
+    BIREF_PE_DISK = 0,
+    BIREF_PE_HOLE = 1,
+    BIREF_PE_BEAM = 2,
+    BIREF_PE_GRID = 3,
+    BIREF_PE_NODES = 4
+} biref_pe_field_kind;
 
 /* A plate: its stress field and outline. The picture shows frame[] (xmin, xmax, ymin, ymax);
  * points outside the material show the polariscope without a specimen. */
@@ -131,21 +141,24 @@ typedef struct {
     double width, height; /* hole: plate sides (m); beam: length (width) */
     double angle;       /* hole: direction of the remote tension from x towards y (rad) */
     const biref_pe_grid *grid; /* grid: borrowed */
+    const biref_pe_mesh *mesh; /* nodes: borrowed */
     double frame[4];
 } biref_pe_field;
 
 /* Fills f for a preset with the given parameters and a frame that shows the whole part (disk:
  * 2R plus a 4 % margin; hole: the plate; beam: the length times 1.5 H). One-line reason into
  * msg for non-positive or non-finite parameters, a hole not inside its plate, etc. */
-biref_status biref_pe_field_disk(biref_pe_field *f, double R, double h, double P, char *msg, size_t msg_len);
-biref_status biref_pe_field_hole(biref_pe_field *f, double a, double width, double height, double h, double S,
-                                 double angle, char *msg, size_t msg_len);
-biref_status biref_pe_field_beam(biref_pe_field *f, double length, double H, double h, double M, char *msg,
-                                 size_t msg_len);
-biref_status biref_pe_field_grid(biref_pe_field *f, const biref_pe_grid *g, double h, char *msg, size_t msg_len);
+BIREF_API biref_status biref_pe_field_disk(biref_pe_field *f, double R, double h, double P, char *msg, size_t msg_len);
+BIREF_API biref_status biref_pe_field_hole(biref_pe_field *f, double a, double width, double height, double h, double S,
+                                           double angle, char *msg, size_t msg_len);
+BIREF_API biref_status biref_pe_field_beam(biref_pe_field *f, double length, double H, double h, double M, char *msg,
+                                           size_t msg_len);
+BIREF_API biref_status biref_pe_field_grid(biref_pe_field *f, const biref_pe_grid *g, double h, char *msg, size_t msg_len);
+/* Nodes: the frame is the bounding box of the triangulation. */
+BIREF_API biref_status biref_pe_field_nodes(biref_pe_field *f, const biref_pe_mesh *m, double h, char *msg, size_t msg_len);
 
 /* Stress at (x, y); returns 1 inside the material, 0 outside (out untouched). */
-int biref_pe_field_stress(const biref_pe_field *f, double x, double y, biref_pe_stress *out);
+BIREF_API int biref_pe_field_stress(const biref_pe_field *f, double x, double y, biref_pe_stress *out);
 
 /* ------------------------------------------------------------------------ */
 /* Polariscope and light                                                     */
@@ -159,9 +172,9 @@ typedef enum { BIREF_PE_DARK = 0, BIREF_PE_LIGHT = 1 } biref_pe_field_type;
  * plate and analyzer) as a projector P onto the unit Jones vector u (s/p basis; P = conj(u) u^T,
  * biref_analyzer_linear / biref_analyzer_circular). The input light has unit intensity. */
 typedef struct {
-    double complex C[2][2];
-    double complex P[2][2];
-    double complex u[2];
+    biref_complex C[2][2];
+    biref_complex P[2][2];
+    biref_complex u[2];
 } biref_pe_polariscope;
 
 /* Plane: polarizer at angle psi from x towards y; analyzer crossed (dark) or parallel (light).
@@ -169,15 +182,15 @@ typedef struct {
  * analyzer. With ideal achromatic plates the light reaching the specimen is circular (here
  * S3 = +1, whatever psi) and the output side is a circular analyzer that blocks it (dark
  * field, handedness -1) or passes it (light field, +1); psi then changes nothing. */
-void biref_pe_polariscope_make(biref_pe_polariscope_kind kind, biref_pe_field_type field, double psi_rad,
-                               biref_pe_polariscope *out);
+BIREF_API void biref_pe_polariscope_make(biref_pe_polariscope_kind kind, biref_pe_field_type field, double psi_rad,
+                                         biref_pe_polariscope *out);
 /* Any polarized input (Stokes, S0 = 1 for unit intensity) and analyzer projector P (a rank-one
  * projector such as biref_analyzer_*). BIREF_ERR_INVALID for unphysical Stokes vectors or a
  * P that is not a unit-vector projector. */
-biref_status biref_pe_polariscope_custom(const double stokes[4], const double complex P[2][2],
-                                         biref_pe_polariscope *out);
+BIREF_API biref_status biref_pe_polariscope_custom(const double stokes[4], const biref_complex P[2][2],
+                                                   biref_pe_polariscope *out);
 /* Detected intensity with no specimen: u^H C u. */
-double biref_pe_polariscope_background(const biref_pe_polariscope *pol);
+BIREF_API double biref_pe_polariscope_background(const biref_pe_polariscope *pol);
 
 typedef enum { BIREF_PE_WHITE = 0, BIREF_PE_MONO = 1 } biref_pe_light_kind;
 
@@ -192,11 +205,11 @@ typedef struct {
 } biref_pe_setup;
 
 /* Retardation (n1 - n2) h in nm and fringe order N = (n1 - n2) h / lambda = h C (s1 - s2) / lambda. */
-double biref_pe_retardation_nm(const biref_pe_setup *s, const biref_pe_principal *p);
+BIREF_API double biref_pe_retardation_nm(const biref_pe_setup *s, const biref_pe_principal *p);
 /* The model's retardation on the oblique path at theta (the plate turned about x, as in
  * biref_pe_shade_oblique): |Re(opl_e - opl_o)| of one crossing of biref_pe_slab_best; equals
  * biref_pe_retardation_nm at theta = 0. NAN if the slab cannot be prepared. */
-double biref_pe_retardation_oblique_nm(const biref_pe_setup *s, const biref_pe_principal *p, double theta_rad);
+BIREF_API double biref_pe_retardation_oblique_nm(const biref_pe_setup *s, const biref_pe_principal *p, double theta_rad);
 
 /* Fast path (docs/PHOTOELASTICITY.md, "Fast path"): at normal incidence with the axis in the
  * plane the o and e modes do not mix, J_T = t_e a a^T + t_o b b^T (a, b the principal
@@ -206,15 +219,15 @@ double biref_pe_retardation_oblique_nm(const biref_pe_setup *s, const biref_pe_p
  * path differences (2m + 1) delta, m = 0, 1, 2 (biref_spectral_phase_integrals); monochromatic
  * light is the closed-form geometric series. White: band-normalised XYZ (white E = (1,1,1));
  * mono: xyz[0] = xyz[1] = xyz[2] = intensity. sp may be NULL for monochromatic light. */
-void biref_pe_shade(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p, double xyz[3]);
+BIREF_API void biref_pe_shade(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p, double xyz[3]);
 
 /* The same point by the general machinery, for verification: biref_slab_prepare on
  * biref_pe_slab_at, then white: biref_spectrum_expansion_polarized (every interference term,
  * adaptive order); mono: |e J_T P|^2 of the closed-form Jones matrix at lambda_nm, averaged over
  * `thickness_jitter` uniform thickness samples spanning thickness_span_nm (0 or 1 sample: the
  * coherent value at the nominal thickness). */
-biref_status biref_pe_shade_general(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p,
-                                    int thickness_jitter, double thickness_span_nm, double xyz[3]);
+BIREF_API biref_status biref_pe_shade_general(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p,
+                                              int thickness_jitter, double thickness_span_nm, double xyz[3]);
 
 /* Oblique viewing (the plate turned about its x axis by theta, so that the plane of incidence
  * contains the plate's y axis and normal; polarizer and analyzer stay perpendicular to the line
@@ -222,12 +235,22 @@ biref_status biref_pe_shade_general(const biref_pe_setup *s, const biref_spectra
  * white light by biref_spectrum_expansion_polarized; monochromatic by the path expansion to order
  * 2, paths coherent within an order and orders added in intensity (docs, "Coherence"). An
  * approximation beyond normal incidence: docs/PHOTOELASTICITY.md, "How it degrades". */
-biref_status biref_pe_shade_oblique(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p,
-                                    double theta_rad, double xyz[3]);
+BIREF_API biref_status biref_pe_shade_oblique(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p,
+                                              double theta_rad, double xyz[3]);
 
 /* The same point by numeric spectral integration (white light only). */
-biref_status biref_pe_shade_numeric(const biref_pe_setup *s, const biref_numeric_plan *plan,
-                                    const biref_pe_principal *p, double xyz[3]);
+BIREF_API biref_status biref_pe_shade_numeric(const biref_pe_setup *s, const biref_numeric_plan *plan,
+                                              const biref_pe_principal *p, double xyz[3]);
+
+/* The polariscope as a light (integrator.h): its coherency C and analyzer P. */
+BIREF_API void biref_pe_light(const biref_pe_polariscope *pol, biref_light *out);
+
+/* White light through any integrator, at normal incidence (theta 0: biref_pe_slab_at, the model
+ * of biref_pe_shade_general and biref_pe_shade_numeric) or oblique (biref_pe_slab_best, as
+ * biref_pe_shade_oblique). The analytic method refuses a polariscope's light (it handles the
+ * paper's s/p model only). BIREF_ERR_INVALID for monochromatic light. */
+BIREF_API biref_status biref_pe_shade_integrated(const biref_pe_setup *s, const biref_integrator *it,
+                                                 const biref_pe_principal *p, double theta_rad, double xyz[3]);
 
 /* ------------------------------------------------------------------------ */
 /* Pictures                                                                  */
@@ -246,8 +269,128 @@ typedef struct {
  * caller foreshortens the height by cos(tilt) to keep square pixels. sp is required for white
  * light. Deterministic and independent of the thread count. BIREF_ERR_INVALID for a tilt outside
  * [0, 89 deg]. */
-biref_status biref_pe_render(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_field *f,
-                             const biref_pe_image_opts *opt, float *xyz);
+BIREF_API biref_status biref_pe_render(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_field *f,
+                                       const biref_pe_image_opts *opt, float *xyz);
+
+/* ------------------------------------------------------------------------ */
+/* Nodes from a finite-element export                                        */
+/* ------------------------------------------------------------------------ */
+
+/* Column names and units of a node table (docs/PHOTOELASTICITY.md, "Stress from FEA nodes").
+ * Names are matched case-insensitively; other columns are ignored. */
+typedef struct {
+    const char *x, *y, *sxx, *syy, *txy;
+    double length_m;  /* metres per length unit of the file (1e-3 for mm) */
+    double stress_pa; /* pascals per stress unit of the file (1e6 for MPa) */
+} biref_pe_node_format;
+
+/* Names x, y, sxx, syy, txy; millimetres; MPa. */
+BIREF_API void biref_pe_node_format_default(biref_pe_node_format *f);
+
+/* Parses a node table: a header line naming the columns, then one row per node. Fields are
+ * separated by commas (or, if the header has none, semicolons, else tabs/spaces); '#' comments,
+ * blank lines, CR LF and a UTF-8 byte-order mark are accepted. Nodes at the same position (as
+ * element-wise exports repeat them) are merged with their stresses averaged. The nodes are
+ * triangulated (Delaunay, qhull) and interpolated linearly in each triangle. On failure one line
+ * naming the row and column, e.g. "line 7, column syy (S22): not a number: 'abc'". */
+BIREF_API biref_status biref_pe_mesh_parse(const char *text, size_t len, const biref_pe_node_format *fmt, biref_pe_mesh **out,
+                                 char *msg, size_t msg_len);
+BIREF_API biref_status biref_pe_mesh_load(const char *path, const biref_pe_node_format *fmt, biref_pe_mesh **out, char *msg,
+                                size_t msg_len);
+/* Adds a boundary: one or more closed polygons, one vertex "x,y" (or "x y") per line, polygons
+ * separated by blank lines, an optional header; the material is inside by the even-odd rule
+ * (an outline plus the outlines of its holes). length_m as in biref_pe_node_format. */
+BIREF_API biref_status biref_pe_mesh_boundary_parse(biref_pe_mesh *m, const char *text, size_t len, double length_m, char *msg,
+                                          size_t msg_len);
+BIREF_API biref_status biref_pe_mesh_boundary_load(biref_pe_mesh *m, const char *path, double length_m, char *msg,
+                                         size_t msg_len);
+BIREF_API void biref_pe_mesh_destroy(biref_pe_mesh *m);
+
+typedef struct {
+    size_t rows;       /* data rows read */
+    size_t nodes;      /* distinct positions */
+    size_t triangles;  /* non-degenerate Delaunay triangles */
+    size_t loops;      /* boundary polygons (0: none) */
+    size_t loop_vertices;
+} biref_pe_mesh_info;
+BIREF_API void biref_pe_mesh_get_info(const biref_pe_mesh *m, biref_pe_mesh_info *out);
+/* Bounding box of the triangulation (xmin, xmax, ymin, ymax), m. */
+BIREF_API void biref_pe_mesh_bounds(const biref_pe_mesh *m, double b[4]);
+/* Linear interpolation in the triangle holding (x, y); returns 0 outside the triangulation or
+ * outside the boundary ("no material"), leaving out untouched. Thread-safe. */
+BIREF_API int biref_pe_mesh_stress(const biref_pe_mesh *m, double x, double y, biref_pe_stress *out);
+
+/* ------------------------------------------------------------------------ */
+/* Full-field maps                                                           */
+/* ------------------------------------------------------------------------ */
+
+typedef enum {
+    BIREF_PE_MAP_FRINGE_ORDER = 0, /* N = h C (s1 - s2) / lambda */
+    BIREF_PE_MAP_ISOCLINIC = 1,    /* direction of s1, degrees from x towards y, (-90, 90] */
+    BIREF_PE_MAP_RETARDATION = 2,  /* h C (s1 - s2), nm */
+    BIREF_PE_MAP_SIGMA1 = 3,       /* MPa */
+    BIREF_PE_MAP_SIGMA2 = 4        /* MPa */
+} biref_pe_map_kind;
+#define BIREF_PE_MAP_COUNT 5
+
+/* "fringe-order", "isoclinic", "retardation", "sigma1", "sigma2"; and the unit ("1", "deg",
+ * "nm", "MPa"). from_name: BIREF_ERR_INVALID for other names. */
+BIREF_API const char *biref_pe_map_name(biref_pe_map_kind k);
+BIREF_API const char *biref_pe_map_unit(biref_pe_map_kind k);
+BIREF_API biref_status biref_pe_map_from_name(const char *name, biref_pe_map_kind *out);
+/* One value of a map at a point with principal stresses p (fringe order at lambda_nm). */
+BIREF_API double biref_pe_map_value(biref_pe_map_kind k, const biref_pe_setup *s, double lambda_nm, const biref_pe_principal *p);
+/* The map on the pixel grid of biref_pe_render (one sample at each pixel centre, top row =
+ * frame's ymax), NAN where there is no material. */
+BIREF_API biref_status biref_pe_render_map(const biref_pe_setup *s, const biref_pe_field *f, biref_pe_map_kind k,
+                                 double lambda_nm, int width, int height, int threads, float *out);
+
+/* ------------------------------------------------------------------------ */
+/* Phase stepping                                                            */
+/* ------------------------------------------------------------------------ */
+
+/* One image of a phase-stepped circular polariscope: input polarizer and quarter-wave plate fixed
+ * (circular light, S3 = +1 as biref_pe_polariscope_make), output quarter-wave plate with its fast
+ * axis at qwp and analyzer at analyzer (degrees from x towards y). stokes: the state the output
+ * side passes. For an ideal retarder of retardation delta = 2 pi N with s1 along phi the image is
+ *   I = Ib + Ia/2 (1 + a3 cos delta + sin delta (a2 cos 2phi - a1 sin 2phi)),  a = stokes[1..3]
+ * (docs/PHOTOELASTICITY.md, "Phase stepping"). */
+typedef struct {
+    double qwp_deg, analyzer_deg;
+    double stokes[4];
+} biref_pe_step;
+
+/* The settings of the n-step method, n = 6 (Patterson & Wang's six settings) or 4 (the first four
+ * of them); returns n, or 0 for any other n. */
+BIREF_API int biref_pe_phase_steps(int n, biref_pe_step out[6]);
+/* The polariscope of one step (ideal achromatic elements). */
+BIREF_API void biref_pe_polariscope_stepped(double qwp_rad, double analyzer_rad, biref_pe_polariscope *out);
+
+typedef struct {
+    double ref_x, ref_y; /* pixel (column, row from the top) of known fringe order */
+    double ref_order;    /* fringe order there (0 for a zero-order point) */
+    double min_modulation; /* pixels with Ia below this fraction of the largest Ia are masked */
+} biref_pe_demod_opts;
+
+/* Output planes (width x height floats each; any may be NULL); NAN where masked. */
+typedef struct {
+    float *isoclinic_deg; /* direction of s1, (-90, 90] */
+    float *phase_wrapped; /* isochromatic phase 2 pi N modulo 2 pi, [0, 2 pi) */
+    float *fringe_order;  /* unwrapped N */
+    float *modulation;    /* Ia */
+    float *background;    /* Ib */
+} biref_pe_demod_maps;
+
+/* Recovers the isoclinic angle and the isochromatic phase from an n-step image set (n = 4 or 6,
+ * in the order of biref_pe_phase_steps) and unwraps the phase from the reference pixel
+ * (quality-guided flood fill that keeps the isoclinic continuous, so that the pi/2 ambiguity of
+ * the isoclinic and the sign of the phase are resolved together). The set leaves one global sign
+ * open (s1 and s2 swapped, N mirrored about the reference); it is chosen so that the fewest
+ * pixels have N < -1/4 (fringe orders are never negative). One-line reason into msg. */
+BIREF_API biref_status biref_pe_demodulate(int n, const float *const images[], int width, int height,
+                                 const biref_pe_demod_opts *o, const biref_pe_demod_maps *out, char *msg,
+                                 size_t msg_len);
+
 
 #ifdef __cplusplus
 }

@@ -95,15 +95,15 @@ typedef struct {
  * On failure returns BIREF_ERR_INVALID and writes one line "FIELD: reason" into msg,
  * FIELD being the JSON path (e.g. "slabs[0].thickness_mm"). Vectors are normalised,
  * tangents orthogonalised, thickness converted to nm. */
-biref_status biref_scene_parse(const char *text, size_t len, biref_scene *out, char *msg, size_t msg_len);
+BIREF_API biref_status biref_scene_parse(const char *text, size_t len, biref_scene *out, char *msg, size_t msg_len);
 
 /* Reads and parses a file; msg is "FIELD: reason" as above, or "cannot read: ..."
  * with BIREF_ERR_IO. */
-biref_status biref_scene_load(const char *path, biref_scene *out, char *msg, size_t msg_len);
+BIREF_API biref_status biref_scene_load(const char *path, biref_scene *out, char *msg, size_t msg_len);
 
 /* Checks a scene built or modified in code (the same checks as biref_scene_parse, on
  * already-normalised data, with the same field names). */
-biref_status biref_scene_validate(const biref_scene *scene, char *msg, size_t msg_len);
+BIREF_API biref_status biref_scene_validate(const biref_scene *scene, char *msg, size_t msg_len);
 
 /* ------------------------------------------------------------------------ */
 /* Rendering                                                                 */
@@ -128,16 +128,16 @@ typedef struct {
                         one ray through the pixel centre); 1 ... BIREF_MAX_SUPERSAMPLE */
 } biref_render_options;
 
-void biref_render_options_default(biref_render_options *opt);
+BIREF_API void biref_render_options_default(biref_render_options *opt);
 
 typedef struct biref_renderer biref_renderer;
 
 /* Precomputes everything per scene (spectral tables, numeric plan, per-slab frames).
  * BIREF_ERR_INVALID with a one-line msg if the scene is invalid or the method cannot
  * handle its polarizers (world-fixed polarizers need a numeric method or the expansion). */
-biref_status biref_renderer_create(const biref_scene *scene, const biref_render_options *opt,
-                                   biref_renderer **out, char *msg, size_t msg_len);
-void biref_renderer_destroy(biref_renderer *r);
+BIREF_API biref_status biref_renderer_create(const biref_scene *scene, const biref_render_options *opt,
+                                             biref_renderer **out, char *msg, size_t msg_len);
+BIREF_API void biref_renderer_destroy(biref_renderer *r);
 
 /* Called after each finished row, from inside the parallel loop but serialised
  * (never concurrently); rows_done counts the rows finished so far. */
@@ -154,59 +154,37 @@ typedef struct {
  * XYZ is band-normalised (white E = (1,1,1)) and already multiplied by the exposure.
  * Deterministic: every pixel is independent of the thread count. No allocation per
  * pixel. stats and progress may be NULL. */
-biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_end, int y_step, float *xyz,
-                                   biref_progress_fn progress, void *progress_user, biref_render_stats *stats);
+BIREF_API biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_end, int y_step, float *xyz,
+                                             biref_progress_fn progress, void *progress_user, biref_render_stats *stats);
 
 /* Convenience: the whole image. */
-biref_status biref_render_image(const biref_renderer *r, float *xyz, biref_progress_fn progress,
-                                void *progress_user, biref_render_stats *stats);
+BIREF_API biref_status biref_render_image(const biref_renderer *r, float *xyz, biref_progress_fn progress,
+                                          void *progress_user, biref_render_stats *stats);
 
-int biref_renderer_width(const biref_renderer *r);
-int biref_renderer_height(const biref_renderer *r);
+BIREF_API int biref_renderer_width(const biref_renderer *r);
+BIREF_API int biref_renderer_height(const biref_renderer *r);
 
 /* ------------------------------------------------------------------------ */
 /* Images                                                                    */
 /* ------------------------------------------------------------------------ */
 
 /* XYZ floats (3 per pixel) -> 8-bit encoded sRGB (clamped, NaN -> 0) / linear sRGB floats. */
-void biref_xyz_image_to_srgb8(const float *xyz, size_t n_pixels, unsigned char *rgb);
-void biref_xyz_image_to_linear_srgb(const float *xyz, size_t n_pixels, float *rgb);
+BIREF_API void biref_xyz_image_to_srgb8(const float *xyz, size_t n_pixels, unsigned char *rgb);
+BIREF_API void biref_xyz_image_to_linear_srgb(const float *xyz, size_t n_pixels, float *rgb);
 
 /* Writes 8-bit RGB (top row first) as a PNG with an sRGB chunk. The file is written to
  * a temporary name in the same directory and renamed, so a failure leaves nothing behind.
  * BIREF_ERR_IO with a one-line msg on failure. */
-biref_status biref_png_write_rgb8(const char *path, int width, int height, const unsigned char *rgb, char *msg,
-                                  size_t msg_len);
+BIREF_API biref_status biref_png_write_rgb8(const char *path, int width, int height, const unsigned char *rgb, char *msg,
+                                            size_t msg_len);
 
 /* Reads any PNG as 8-bit sRGB RGB (alpha composited on black); *rgb is malloc'ed. */
-biref_status biref_png_read_rgb8(const char *path, int *width, int *height, unsigned char **rgb, char *msg,
-                                 size_t msg_len);
+BIREF_API biref_status biref_png_read_rgb8(const char *path, int *width, int *height, unsigned char **rgb, char *msg,
+                                           size_t msg_len);
 
 /* Writes linear RGB floats (top row first) as a colour PFM (little-endian, rows stored
  * bottom to top as the format requires), atomically like biref_png_write_rgb8. */
-biref_status biref_pfm_write(const char *path, int width, int height, const float *rgb, char *msg, size_t msg_len);
-
-/* ------------------------------------------------------------------------ */
-/* Progress bar                                                              */
-/* ------------------------------------------------------------------------ */
-
-/* A textual progress bar with ETA, redrawn at most every 0.1 s on f (normally stderr).
- * Usable directly as a biref_progress_fn (pass the bar as user). enabled = 0 makes every
- * call a no-op. */
-typedef struct {
-    FILE *f;
-    int enabled;
-    double t_start, t_last;
-    int drawn;
-    char label[32];
-} biref_progress_bar;
-
-void biref_progress_bar_init(biref_progress_bar *bar, FILE *f, int enabled, const char *label);
-void biref_progress_bar_update(void *bar, int done, int total);
-void biref_progress_bar_finish(biref_progress_bar *bar);
-
-/* Monotonic wall clock in seconds. */
-double biref_wall_seconds(void);
+BIREF_API biref_status biref_pfm_write(const char *path, int width, int height, const float *rgb, char *msg, size_t msg_len);
 
 #ifdef __cplusplus
 }

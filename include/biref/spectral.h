@@ -10,6 +10,7 @@
 #include "biref/color.h"
 #include "biref/common.h"
 #include "biref/optics.h"
+#include "biref/polarization.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -21,14 +22,14 @@ typedef struct {
     double lambda_max_nm;   /* default 700 */
 } biref_spectral_config;
 
-void biref_spectral_config_default(biref_spectral_config *cfg);
+BIREF_API void biref_spectral_config_default(biref_spectral_config *cfg);
 
 typedef struct biref_spectral biref_spectral;
 
 /* BIREF_ERR_INVALID for an unknown cmf, non-finite or inverted range (min >= max, min <= 0). */
-biref_status biref_spectral_create(const biref_spectral_config *cfg, biref_spectral **out);
-void biref_spectral_destroy(biref_spectral *sp);
-const biref_cmf_band *biref_spectral_band(const biref_spectral *sp);
+BIREF_API biref_status biref_spectral_create(const biref_spectral_config *cfg, biref_spectral **out);
+BIREF_API void biref_spectral_destroy(biref_spectral *sp);
+BIREF_API const biref_cmf_band *biref_spectral_band(const biref_spectral *sp);
 
 /* Band-normalised integrals of |J[in][out]|^2 for transmission and reflection,
  * [input s/p][output s/p][band x/y/z]. */
@@ -47,60 +48,45 @@ typedef enum {
 #define BIREF_GROUND_TRUTH_SAMPLES 16384
 
 /* "analytic", "numeric", "ground-truth", "expansion". */
-biref_status biref_method_from_name(const char *name, biref_method *out);
-const char *biref_method_name(biref_method m);
+BIREF_API biref_status biref_method_from_name(const char *name, biref_method *out);
+BIREF_API const char *biref_method_name(biref_method m);
 
 /* Numeric integration plan: sample wavelengths and per-band weights for N midpoint samples,
  * normalised so that a flat spectrum gives exactly (1, 1, 1). Immutable, shareable. */
 typedef struct biref_numeric_plan biref_numeric_plan;
 
-biref_status biref_numeric_plan_create(const biref_spectral *sp, int samples, biref_numeric_plan **out);
-void biref_numeric_plan_destroy(biref_numeric_plan *plan);
-int biref_numeric_plan_samples(const biref_numeric_plan *plan);
+BIREF_API biref_status biref_numeric_plan_create(const biref_spectral *sp, int samples, biref_numeric_plan **out);
+BIREF_API void biref_numeric_plan_destroy(biref_numeric_plan *plan);
+BIREF_API int biref_numeric_plan_samples(const biref_numeric_plan *plan);
 
 /* Numeric integration of the closed-form Jones matrices (no allocation). */
-void biref_spectrum_numeric(const biref_numeric_plan *plan, const biref_slab_state *st, biref_spectrum *out);
+BIREF_API void biref_spectrum_numeric(const biref_numeric_plan *plan, const biref_slab_state *st, biref_spectrum *out);
 
 /* The paper's analytic approximation (eqs. 20–26, m = 1) for all four input/output pairs,
  * transmission and reflection (no allocation). */
-void biref_spectrum_analytic(const biref_spectral *sp, const biref_slab_state *st, biref_spectrum *out);
+BIREF_API void biref_spectrum_analytic(const biref_spectral *sp, const biref_slab_state *st, biref_spectrum *out);
 
 /* S(cos(2 pi D / lambda), Λ_j) and S(sin(2 pi D / lambda), Λ_j) for an optical path
  * difference D in nm, from the look-up table (negative D allowed: cos even, sin odd). */
-void biref_spectral_phase_integrals(const biref_spectral *sp, double opd_nm, double cos_int[3], double sin_int[3]);
+BIREF_API void biref_spectral_phase_integrals(const biref_spectral *sp, double opd_nm, double cos_int[3], double sin_int[3]);
 
 /* The same integrals by direct quadrature (slow; for tests and for checking the table). */
-void biref_spectral_phase_integrals_direct(const biref_spectral *sp, double opd_nm, double cos_int[3],
-                                           double sin_int[3]);
-
-/* Polarisation mixing of a spectrum for the paper's light model: incident light with
- * fractions w_in[s], w_in[p] (incoherent), detected through an analyzer passing
- * out_mask[s], out_mask[p] (1 = pass, 0 = block). xyz = sum w_in[i] out_mask[j] X[i][j]. */
-void biref_spectrum_mix(const double X[2][2][3], const double w_in[2], const double out_mask[2], double xyz[3]);
+BIREF_API void biref_spectral_phase_integrals_direct(const biref_spectral *sp, double opd_nm, double cos_int[3],
+                                                     double sin_int[3]);
 
 /* General polarisation for numeric integration: incident coherency matrix C (s/p basis of the
  * incident wave, C[i][j] = <e_i conj(e_j)>, trace = incident intensity) and analyzer Jones
  * matrix P ([in][out] in the s/p basis of the outgoing wave; NULL = no analyzer). Detected
  * intensity per wavelength = sum_{i,j,k} C[i][j] (J P)[i][k] conj((J P)[j][k]), integrated
  * with the plan's weights. which = BIREF_TRANSMISSION or BIREF_REFLECTION. */
-void biref_spectrum_numeric_polarized(const biref_numeric_plan *plan, const biref_slab_state *st, int which,
-                                      const double complex C[2][2], const double complex P[2][2], double xyz[3]);
+BIREF_API void biref_spectrum_numeric_polarized(const biref_numeric_plan *plan, const biref_slab_state *st, int which,
+                                                const biref_complex C[2][2], const biref_complex P[2][2], double xyz[3]);
 
 /* ------------------------------------------------------------------------- */
 /* Polarisation states and the exact path-group expansion (beyond the paper)  */
 /* ------------------------------------------------------------------------- */
 
-/* Coherency matrix C[i][j] = <e_i conj(e_j)> in the s/p basis of a wave from Stokes parameters
- * (S0 intensity, S1 = |e_s|^2 - |e_p|^2, S2 = 2 Re(e_s conj e_p), S3 = -2 Im(e_s conj e_p)):
- * S3 > 0 for e = (1, i)/sqrt2, whose field turns from s towards p (docs/CONVENTIONS.md).
- * BIREF_ERR_INVALID unless S0 >= 0 and S1^2 + S2^2 + S3^2 <= S0^2 (physical light). */
-biref_status biref_stokes_to_coherency(const double stokes[4], double complex C[2][2]);
-
-/* Analyzers as Jones matrices [in][out] in the s/p basis of the outgoing wave: projection onto
- * the unit Jones vector u, P[k][o] = conj(u_k) u_o. Linear at angle psi from s towards p;
- * circular with handedness +1 (u = (1, i)/sqrt2, S3 = +1) or -1. */
-void biref_analyzer_linear(double psi_rad, double complex P[2][2]);
-void biref_analyzer_circular(int handedness, double complex P[2][2]);
+/* Stokes vectors, coherency matrices and analyzers: polarization.h. */
 
 #define BIREF_EXPANSION_MAX_ORDER 8
 
@@ -111,7 +97,7 @@ typedef struct {
     int max_order;    /* adaptive cap (default and maximum 8) */
 } biref_expansion_opts;
 
-void biref_expansion_opts_default(biref_expansion_opts *o);
+BIREF_API void biref_expansion_opts_default(biref_expansion_opts *o);
 
 /* Exact spectral integral of the path-group expansion J(k) = sum_g M_g e^{ik Phi_g} (groups of
  * paths with equal optical path) up to the chosen order, every pair of groups interfering via
@@ -120,13 +106,13 @@ void biref_expansion_opts_default(biref_expansion_opts *o);
  * C and analyzer P (NULL = none), which = BIREF_TRANSMISSION or BIREF_REFLECTION. *order_used
  * (the pair order) may be NULL. No allocation; about 250 KB of stack per call (threads created
  * with small stacks need at least 512 KB). */
-biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
-                                                const double complex C[2][2], const double complex P[2][2],
-                                                const biref_expansion_opts *opts, double xyz[3], int *order_used);
+BIREF_API biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
+                                                          const biref_complex C[2][2], const biref_complex P[2][2],
+                                                          const biref_expansion_opts *opts, double xyz[3], int *order_used);
 
 /* The four input/output pairs of transmission and reflection (like biref_spectrum_analytic). */
-biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab_state *st,
-                                      const biref_expansion_opts *opts, biref_spectrum *out);
+BIREF_API biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab_state *st,
+                                                const biref_expansion_opts *opts, biref_spectrum *out);
 
 #ifdef __cplusplus
 }

@@ -8,23 +8,16 @@
 #include "render/vec3.h"
 
 /* Re(opl) of the four leg types (biref_opl_footprint order) for a ray along dir, in the
- * transmission frame of that ray (the same frame as render_shade_pixel's). Returns 0 if the ray is
- * edge-on to the slab. */
+ * transmission frame of that ray (biref_render_hit_frames, as the shading uses). Returns 0 if the
+ * ray is edge-on to the slab. */
 static int leg_opls(const render_slab *sl, const double dir[3], double opl[4])
 {
-    double dn = v3_dot(dir, sl->normal);
-    if (fabs(dn) < 1e-12) return 0;
-    double theta = acos(fmin(1.0, fabs(dn)));
-    if (theta > RENDER_THETA_MAX) theta = RENDER_THETA_MAX;
-    double y[3], z[3], x[3], A[3];
-    v3_scale(sl->normal, dn < 0 ? -1.0 : 1.0, y);
-    v3_axpy(dir, -dn, sl->normal, z);
-    if (v3_normalize(z, z) < 1e-9) v3_set(z, sl->tangent[0], sl->tangent[1], sl->tangent[2]);
-    v3_cross(y, z, x);
-    v3_set(A, v3_dot(sl->axis_world, x), v3_dot(sl->axis_world, y), v3_dot(sl->axis_world, z));
+    if (fabs(v3_dot(dir, sl->normal)) < 1e-12) return 0;
+    biref_hit_frames f;
+    biref_render_hit_frames(sl->normal, sl->tangent, sl->axis_world, &sl->base, dir, &f);
     double complex q[4];
-    biref_uniaxial_normal_components(sl->base.eta_o, sl->base.eta_e, A, sl->base.eta_i * sin(theta), q);
-    const double d = sl->base.thickness_nm;
+    biref_uniaxial_normal_components(f.slab.eta_o, f.slab.eta_e, f.slab.axis, f.slab.eta_i * sin(f.theta), q);
+    const double d = f.slab.thickness_nm;
     opl[BIREF_LEG_DOWN_O] = -creal(q[BIREF_MODE_O_DOWN]) * d;
     opl[BIREF_LEG_DOWN_E] = -creal(q[BIREF_MODE_E_DOWN]) * d;
     opl[BIREF_LEG_UP_O] = creal(q[BIREF_MODE_O_UP]) * d;
@@ -32,8 +25,8 @@ static int leg_opls(const render_slab *sl, const double dir[3], double opl[4])
     return 1;
 }
 
-void render_footprint(const biref_renderer *r, const render_slab *sl, const double dir[3], const double dx[3],
-                      const double dy[3], biref_opl_footprint *fp)
+void biref_render_footprint(const biref_renderer *r, const render_slab *sl, const double dir[3], const double dx[3],
+                            const double dy[3], biref_opl_footprint *fp)
 {
     fp->pf = r->prefilter;
     double o0[4], o1[4];

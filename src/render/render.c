@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "error.h"
 #include "render/render_internal.h"
 #include "render/vec3.h"
 
@@ -19,49 +20,43 @@ void biref_render_options_default(biref_render_options *opt)
     opt->supersample = 1;
 }
 
-static biref_status set_msg(char *msg, size_t msg_len, biref_status s, const char *text)
-{
-    if (msg && msg_len) snprintf(msg, msg_len, "%s", text);
-    return s;
-}
-
 biref_status biref_renderer_create(const biref_scene *scene, const biref_render_options *opt, biref_renderer **out,
                                    char *msg, size_t msg_len)
 {
     if (!out) return BIREF_ERR_INVALID;
     *out = NULL;
-    if (!scene || !opt) return set_msg(msg, msg_len, BIREF_ERR_INVALID, "no scene or options");
+    if (!scene || !opt) return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "no scene or options");
     biref_status s = biref_scene_validate(scene, msg, msg_len);
     if (s) return s;
     if (opt->method != BIREF_METHOD_ANALYTIC && opt->method != BIREF_METHOD_NUMERIC &&
         opt->method != BIREF_METHOD_GROUND_TRUTH && opt->method != BIREF_METHOD_EXPANSION)
-        return set_msg(msg, msg_len, BIREF_ERR_INVALID, "unknown spectral method");
+        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "unknown spectral method");
     if (opt->method == BIREF_METHOD_NUMERIC && (opt->samples < 1 || opt->samples > BIREF_GROUND_TRUTH_SAMPLES * 4))
-        return set_msg(msg, msg_len, BIREF_ERR_INVALID, "samples must be between 1 and 65536");
+        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "samples must be between 1 and 65536");
     if (opt->threads < 0 || opt->threads > 1024)
-        return set_msg(msg, msg_len, BIREF_ERR_INVALID, "threads must be between 0 and 1024");
+        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "threads must be between 0 and 1024");
     if (opt->antialias != BIREF_ANTIALIAS_NONE && opt->antialias != BIREF_ANTIALIAS_PREFILTER)
-        return set_msg(msg, msg_len, BIREF_ERR_INVALID, "unknown anti-aliasing mode");
+        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "unknown anti-aliasing mode");
     if (opt->antialias == BIREF_ANTIALIAS_PREFILTER && opt->method != BIREF_METHOD_ANALYTIC &&
         opt->method != BIREF_METHOD_EXPANSION)
-        return set_msg(msg, msg_len, BIREF_ERR_INVALID,
-                       "the prefilter anti-aliasing needs --method analytic or expansion (numeric methods have no "
-                       "phase table)");
+        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len,
+                                 "the prefilter anti-aliasing needs --method analytic or expansion (numeric methods "
+                                 "have no phase table)");
     if (opt->supersample < 1 || opt->supersample > BIREF_MAX_SUPERSAMPLE)
-        return set_msg(msg, msg_len, BIREF_ERR_INVALID, "supersample must be between 1 and 64");
+        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "supersample must be between 1 and 64");
     int world_fixed = scene->polarization.type == BIREF_POL_LINEAR || scene->filter.type == BIREF_FILTER_LINEAR;
     if (world_fixed && opt->method == BIREF_METHOD_ANALYTIC)
-        return set_msg(msg, msg_len, BIREF_ERR_INVALID,
+        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len,
                        "world-fixed polarizers need --method expansion, numeric or ground-truth (the paper's method "
                        "handles s/p only)");
     if (opt->method == BIREF_METHOD_EXPANSION && opt->expansion.order < 0 &&
         !(opt->expansion.tolerance > 0.0 && opt->expansion.tolerance < 1.0))
-        return set_msg(msg, msg_len, BIREF_ERR_INVALID, "expansion tolerance must be in (0, 1)");
+        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "expansion tolerance must be in (0, 1)");
 
     biref_renderer *r = calloc(1, sizeof *r);
-    if (!r) return set_msg(msg, msg_len, BIREF_ERR_NOMEM, "out of memory");
+    if (!r) return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
     r->opt = *opt;
-    render_camera_init(&r->cam, &scene->camera);
+    biref_render_camera_init(&r->cam, &scene->camera);
     r->exposure = scene->camera.exposure;
     r->n_slabs = scene->n_slabs;
     for (int i = 0; i < scene->n_slabs; i++) {
@@ -95,7 +90,7 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
         p->half_h = 0.5 * in->size[1];
         biref_linear_srgb_to_xyz(in->radiance, p->radiance_xyz);
     }
-    render_env_init(&r->env, &scene->env);
+    biref_render_env_init(&r->env, &scene->env);
     r->pol = scene->polarization;
     r->filter = scene->filter;
     r->world_fixed = world_fixed;
@@ -106,17 +101,22 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
 
     biref_spectral_config cfg;
     biref_spectral_config_default(&cfg);
-    s = biref_spectral_create(&cfg, &r->sp);
-    if (!s && opt->method != BIREF_METHOD_ANALYTIC && opt->method != BIREF_METHOD_EXPANSION)
-        s = biref_numeric_plan_create(r->sp, opt->method == BIREF_METHOD_GROUND_TRUTH ? BIREF_GROUND_TRUTH_SAMPLES
-                                                                                       : opt->samples,
-                                      &r->plan);
+    s = biref_light_sp(r->w_in, r->mask, &r->light);
+    if (!s) s = biref_spectral_create(&cfg, &r->sp);
+    if (!s) {
+        biref_integrator_options io;
+        biref_integrator_options_default(&io);
+        io.method = opt->method;
+        io.samples = opt->samples;
+        io.expansion = opt->expansion;
+        s = biref_integrator_create(r->sp, &io, &r->integrator);
+    }
     if (!s && opt->antialias == BIREF_ANTIALIAS_PREFILTER) s = biref_phase_prefilter_create(r->sp, &r->prefilter);
     if (s) {
         char text[120];
         snprintf(text, sizeof text, "cannot set up the spectral integration: %s", biref_status_string(s));
         biref_renderer_destroy(r);
-        return set_msg(msg, msg_len, s, text);
+        return biref_fail_status(s, msg, msg_len, "%s", text);
     }
     *out = r;
     return BIREF_OK;
@@ -125,7 +125,7 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
 void biref_renderer_destroy(biref_renderer *r)
 {
     if (!r) return;
-    biref_numeric_plan_destroy(r->plan);
+    biref_integrator_destroy(r->integrator);
     biref_phase_prefilter_destroy(r->prefilter);
     biref_spectral_destroy(r->sp);
     free(r);
@@ -136,7 +136,7 @@ int biref_renderer_height(const biref_renderer *r) { return r->cam.height; }
 
 /* A deterministic value in [0, 1) per pixel and sub-sample: the image does not depend on the
  * thread count or the row order. */
-static double jitter(int x, int y, int s, unsigned salt)
+static double jitter(int x, int y, int s, uint32_t salt)
 {
     uint32_t h = (uint32_t)x * 0x8da6b343u ^ (uint32_t)y * 0xd8163841u ^ (uint32_t)s * 0xcb1ab31fu ^ salt;
     h ^= h >> 16;
@@ -163,14 +163,14 @@ static int sample_pixel(const biref_renderer *r, int x, int y, double xyz[3], in
             double fx = x + (K == 1 ? 0.5 : (i + jitter(x, y, s, 0x9e3779b9u)) * h);
             double fy = y + (K == 1 ? 0.5 : (j + jitter(x, y, s, 0x7f4a7c15u)) * h);
             double dir[3], c[3], dx[3], dy[3], d1[3];
-            render_camera_ray_at(&r->cam, fx, fy, dir);
+            biref_render_camera_ray_at(&r->cam, fx, fy, dir);
             if (r->prefilter) {
-                render_camera_ray_at(&r->cam, fx + h, fy, d1);
+                biref_render_camera_ray_at(&r->cam, fx + h, fy, d1);
                 v3_sub(d1, dir, dx);
-                render_camera_ray_at(&r->cam, fx, fy + h, d1);
+                biref_render_camera_ray_at(&r->cam, fx, fy + h, d1);
                 v3_sub(d1, dir, dy);
             }
-            hit |= render_shade_pixel(r, dir, r->prefilter ? dx : NULL, r->prefilter ? dy : NULL, c, &fb);
+            hit |= biref_render_shade_pixel(r, dir, r->prefilter ? dx : NULL, r->prefilter ? dy : NULL, c, &fb);
             *fallback += fb;
             for (int k = 0; k < 3; k++) xyz[k] += c[k];
         }
@@ -198,8 +198,8 @@ biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_e
             double dir[3], c[3];
             int fb;
             if (r->opt.supersample == 1 && !r->prefilter) {
-                render_camera_ray(&r->cam, x, y, dir);
-                slab_pixels += render_shade_pixel(r, dir, NULL, NULL, c, &fb);
+                biref_render_camera_ray(&r->cam, x, y, dir);
+                slab_pixels += biref_render_shade_pixel(r, dir, NULL, NULL, c, &fb);
             } else {
                 slab_pixels += sample_pixel(r, x, y, c, &fb);
             }

@@ -6,14 +6,11 @@
 
 #include "render/render_internal.h"
 #include "render/vec3.h"
-/* biref_analytic_terms: the analytic integral for one direction (T or R) only. */
-#include "spectral/spectral_internal.h"
 
 /* Rays leave surfaces from exactly on them; hits closer than this are the surface itself. */
 #define RAY_EPS 1e-9
-#define THETA_MAX RENDER_THETA_MAX
 
-void render_env_init(render_env *e, const biref_environment *env)
+void biref_render_env_init(render_env *e, const biref_environment *env)
 {
     e->type = env->type;
     memcpy(e->up, env->up, sizeof e->up);
@@ -55,7 +52,7 @@ static void env_radiance(const render_env *e, const double d[3], double xyz[3])
     mix3(e->horizon, ground, g, xyz);
 }
 
-void render_radiance(const biref_renderer *r, const double from[3], const double dir[3], double xyz[3])
+void biref_render_radiance(const biref_renderer *r, const double from[3], const double dir[3], double xyz[3])
 {
     double best = INFINITY;
     const render_panel *hit = NULL;
@@ -134,52 +131,32 @@ static double passthrough(const double C[2][2], const double P[2][2])
 static int eval_slab(const biref_renderer *r, const biref_slab_state *st, const biref_opl_footprint *fp,
                      const double x[3], const double k_in[3], const double k_out[3], int which, double xyz[3])
 {
-    if (r->opt.method == BIREF_METHOD_ANALYTIC) {
-        /* Only one of T and R is needed per evaluation, so call the per-direction terms
-         * (eq. 25: S = E + 2H) rather than biref_spectrum_analytic, which computes both and
-         * would double the cost of the dominant part of the pixel. */
-        double E[2][2][3], H[2][2][3], X[2][2][3];
-        biref_analytic_terms_footprint(r->sp, st, fp, which, E, H);
-        for (int i = 0; i < 2; i++)
-            for (int o = 0; o < 2; o++)
-                for (int j = 0; j < 3; j++) X[i][o][j] = E[i][o][j] + 2.0 * H[i][o][j];
-        biref_spectrum_mix(X, r->w_in, r->mask, xyz);
-    } else {
-        /* Numeric methods and the expansion go through the polarized integrators even for the
-         * paper's s/p model: they evaluate only the direction needed (T or R), and a diagonal C
-         * and P give exactly biref_spectrum_mix's sum. s = x for both waves (s is the frame's
-         * x), p = k x s. */
-        double Cr[2][2], Pr[2][2];
-        if (r->world_fixed) {
-            double p_in[3], p_out[3];
-            v3_cross(k_in, x, p_in);
-            v3_cross(k_out, x, p_out);
-            light_coherency(r, x, p_in, Cr);
-            analyzer(r, x, p_out, Pr);
-        } else {
-            Cr[0][0] = r->w_in[0];
-            Cr[1][1] = r->w_in[1];
-            Cr[0][1] = Cr[1][0] = 0.0;
-            Pr[0][0] = r->mask[0];
-            Pr[1][1] = r->mask[1];
-            Pr[0][1] = Pr[1][0] = 0.0;
-        }
+    const biref_light *l = &r->light;
+    biref_light ray_light;
+    if (r->world_fixed) {
+        /* A world-fixed polarizer or analyzer has its own matrices in every ray's basis: s = x
+         * for both waves (s is the frame's x), p = k x s. */
+        double p_in[3], p_out[3], Cr[2][2], Pr[2][2];
+        v3_cross(k_in, x, p_in);
+        v3_cross(k_out, x, p_out);
+        light_coherency(r, x, p_in, Cr);
+        analyzer(r, x, p_out, Pr);
         double complex C[2][2], P[2][2];
         for (int i = 0; i < 2; i++)
             for (int j = 0; j < 2; j++) {
                 C[i][j] = Cr[i][j];
                 P[i][j] = Pr[i][j];
             }
-        const double complex(*Pp)[2] = r->filter.type == BIREF_FILTER_NONE ? NULL : (const double complex(*)[2])P;
-        if (r->opt.method == BIREF_METHOD_EXPANSION) {
-            if (biref_expansion_polarized_footprint(r->sp, st, fp, which, (const double complex(*)[2])C, Pp,
-                                                    &r->opt.expansion, xyz, NULL) != BIREF_OK)
-                return 1;
-        } else {
-            biref_spectrum_numeric_polarized(r->plan, st, which, (const double complex(*)[2])C, Pp, xyz);
-        }
+        biref_light_coherency((const double complex(*)[2])C, &ray_light);
+        biref_light_set_analyzer(&ray_light,
+                                 r->filter.type == BIREF_FILTER_NONE ? NULL : (const double complex(*)[2])P);
+        l = &ray_light;
     }
-    return !(isfinite(xyz[0]) && isfinite(xyz[1]) && isfinite(xyz[2]));
+    const biref_sides side = which == BIREF_REFLECTION ? BIREF_SIDE_REFLECTION : BIREF_SIDE_TRANSMISSION;
+    biref_integration res;
+    if (biref_integrate_footprint(r->integrator, st, fp, side, l, &res) != BIREF_OK) return 1;
+    memcpy(xyz, which == BIREF_REFLECTION ? res.R : res.T, 3 * sizeof(double));
+    return 0;
 }
 
 /* The pass-through factor for a wave along k (no slab), in the basis whose s is
@@ -200,8 +177,31 @@ static double background_factor(const biref_renderer *r, const double k[3], cons
     return passthrough(C, P);
 }
 
-int render_shade_pixel(const biref_renderer *r, const double dir[3], const double dx[3], const double dy[3], double xyz[3],
-                       int *fallback)
+/* The slab's two evaluations, the phase integrals averaged over the footprint fpT (in the
+ * transmission frame; NULL: point look-ups). */
+static int shade_hit(const biref_renderer *r, const biref_hit_frames *f, const biref_opl_footprint *fpT,
+                     double T_xyz[3], double R_xyz[3])
+{
+    /* One optics set-up per hit: the reflection frame is the transmission frame rotated by 180
+     * degrees about z, i.e. the same slab lit from the other face (biref_slab_state_flip). */
+    double k_refl_in[3];
+    v3_scale(f->mirror, -1.0, k_refl_in);
+    biref_slab_state stT, stR;
+    if (biref_slab_prepare(&f->slab, f->theta, &stT) != BIREF_OK) return 1;
+    biref_slab_state_flip(&stT, &stR);
+    biref_opl_footprint fpR;
+    if (fpT) biref_opl_footprint_flip(fpT, &fpR); /* the flip swaps the down and up legs */
+    return eval_slab(r, &stT, fpT, f->x_T, f->k_view, f->k_view, BIREF_TRANSMISSION, T_xyz) ||
+           eval_slab(r, &stR, fpT ? &fpR : NULL, f->x_R, k_refl_in, f->k_view, BIREF_REFLECTION, R_xyz);
+}
+
+int biref_render_shade_hit(const biref_renderer *r, const biref_hit_frames *f, double T_xyz[3], double R_xyz[3])
+{
+    return shade_hit(r, f, NULL, T_xyz, R_xyz);
+}
+
+int biref_render_shade_pixel(const biref_renderer *r, const double dir[3], const double dx[3], const double dy[3],
+                             double xyz[3], int *fallback)
 {
     *fallback = 0;
     const double *o = r->cam.origin;
@@ -227,7 +227,7 @@ int render_shade_pixel(const biref_renderer *r, const double dir[3], const doubl
     v3_scale(dir, -1.0, k_view);
     if (!hit) {
         double L[3];
-        render_radiance(r, o, dir, L);
+        biref_render_radiance(r, o, dir, L);
         double f = background_factor(r, k_view, &r->slabs[0]);
         v3_scale(L, f, xyz);
         return 0;
@@ -235,45 +235,15 @@ int render_shade_pixel(const biref_renderer *r, const double dir[3], const doubl
 
     double hp[3];
     v3_axpy(o, best, dir, hp);
-    double dn = v3_dot(dir, hit->normal);
-    double theta = acos(fmin(1.0, fabs(dn)));
-    if (theta > THETA_MAX) theta = THETA_MAX;
-    /* Paper frame of this ray. Transmission: y = normal pointing away from the camera
-     * (towards the light behind), z = tangential part of the view ray, x = y x z. The
-     * reflection frame has y towards the camera and the same z, hence x_R = -x_T. */
-    double yT[3], z[3], xT[3], xR[3];
-    v3_scale(hit->normal, dn < 0 ? -1.0 : 1.0, yT);
-    v3_axpy(dir, -dn, hit->normal, z);
-    if (v3_normalize(z, z) < 1e-9) memcpy(z, hit->tangent, sizeof z);
-    v3_cross(yT, z, xT);
-    v3_scale(xT, -1.0, xR);
-
-    double mirror[3]; /* direction towards the light that reflects into the eye */
-    v3_axpy(dir, -2.0 * dn, hit->normal, mirror);
+    biref_hit_frames fr;
+    biref_render_hit_frames(hit->normal, hit->tangent, hit->axis_world, &hit->base, dir, &fr);
+    const double *xR = fr.x_R, *mirror = fr.mirror;
     double k_refl_in[3];
     v3_scale(mirror, -1.0, k_refl_in);
-
-    /* One optics set-up per hit: the reflection frame is the transmission frame rotated by 180
-     * degrees about z, i.e. the same slab lit from the other face (biref_slab_state_flip). */
     double tT[3], tR[3];
-    biref_slab slab = hit->base;
-    slab.axis[0] = v3_dot(hit->axis_world, xT);
-    slab.axis[1] = v3_dot(hit->axis_world, yT);
-    slab.axis[2] = v3_dot(hit->axis_world, z);
-    biref_slab_state stT, stR;
-    int failT = 1, failR = 1;
-    if (biref_slab_prepare(&slab, theta, &stT) == BIREF_OK) {
-        biref_slab_state_flip(&stT, &stR);
-        biref_opl_footprint fpT, fpR, *pT = NULL, *pR = NULL;
-        if (r->prefilter && dx && dy) {
-            render_footprint(r, hit, dir, dx, dy, &fpT);
-            biref_opl_footprint_flip(&fpT, &fpR);
-            pT = &fpT, pR = &fpR;
-        }
-        failT = eval_slab(r, &stT, pT, xT, k_view, k_view, BIREF_TRANSMISSION, tT);
-        failR = eval_slab(r, &stR, pR, xR, k_refl_in, k_view, BIREF_REFLECTION, tR);
-    }
-    if (failT || failR) {
+    biref_opl_footprint fp;
+    if (r->prefilter && dx && dy) biref_render_footprint(r, hit, dir, dx, dy, &fp);
+    if (shade_hit(r, &fr, r->prefilter && dx && dy ? &fp : NULL, tT, tR)) {
         /* A failed evaluation (grazing-angle breakdown) must not put a NaN in the image:
          * treat the slab as a perfect mirror seen through the filter. */
         *fallback = 1;
@@ -287,8 +257,8 @@ int render_shade_pixel(const biref_renderer *r, const double dir[3], const doubl
         v3_set(tR, f, f, f);
     }
     double Lb[3], Lf[3];
-    render_radiance(r, hp, dir, Lb);
-    render_radiance(r, hp, mirror, Lf);
+    biref_render_radiance(r, hp, dir, Lb);
+    biref_render_radiance(r, hp, mirror, Lf);
     /* Band-wise products: exact for grey light, an approximation for coloured light. */
     for (int i = 0; i < 3; i++) xyz[i] = tT[i] * Lb[i] + tR[i] * Lf[i];
     return 1;

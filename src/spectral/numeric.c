@@ -87,13 +87,3 @@ void biref_spectrum_numeric_polarized(const biref_numeric_plan *plan, const bire
         for (int b = 0; b < 3; b++) xyz[b] += plan->weight[n][b] * I_det;
     }
 }
-
-void biref_spectrum_mix(const double X[2][2][3], const double w_in[2], const double out_mask[2], double xyz[3])
-{
-    for (int b = 0; b < 3; b++) {
-        double v = 0.0;
-        for (int i = 0; i < 2; i++)
-            for (int o = 0; o < 2; o++) v += w_in[i] * out_mask[o] * X[i][o][b];
-        xyz[b] = v;
-    }
-}

@@ -3,6 +3,7 @@
 #ifndef BIREF_PHASE_PREFILTER_H
 #define BIREF_PHASE_PREFILTER_H
 
+#include "biref/integrator.h"
 #include "biref/spectral.h"
 
 /* Table of the antiderivative of S(e^{ikD}) over D; immutable after creation, shareable. */
@@ -45,5 +46,11 @@ biref_status biref_expansion_polarized_footprint(const biref_spectral *sp, const
                                                  const biref_opl_footprint *fp, int which, const double complex C[2][2],
                                                  const double complex P[2][2], const biref_expansion_opts *opts,
                                                  double xyz[3], int *order_used);
+
+/* biref_integrate with the phase integrals averaged over the footprint fp (the numeric methods,
+ * which have no phase table, ignore it; NULL: identical to biref_integrate). */
+biref_status biref_integrate_footprint(const biref_integrator *it, const biref_slab_state *st,
+                                       const biref_opl_footprint *fp, biref_sides sides, const biref_light *light,
+                                       biref_integration *out);
 
 #endif

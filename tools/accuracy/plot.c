@@ -1,5 +1,5 @@
 /* Figures of `biref accuracy` (see accuracy_plot.h). */
-#include "accuracy_plot.h"
+#include "plot.h"
 
 #include <errno.h>
 #include <math.h>

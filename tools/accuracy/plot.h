@@ -1,8 +1,8 @@
 /* The two figures of `biref accuracy --plot-dir`: ΔE00 against cost per shading sample, and ΔE00
  * against the angle of incidence. PLplot (pngcairo) through fig_plot.h's page set-up and palette;
  * log axes and markers are drawn here. Not thread-safe (PLplot has global state). */
-#ifndef BIREF_CLI_ACCURACY_PLOT_H
-#define BIREF_CLI_ACCURACY_PLOT_H
+#ifndef BIREF_TOOLS_ACCURACY_PLOT_H
+#define BIREF_TOOLS_ACCURACY_PLOT_H
 
 /* How a method is drawn: its own colour, or the numeric family (joined by a line in order). */
 typedef enum { ACC_STYLE_ANALYTIC, ACC_STYLE_EXPANSION, ACC_STYLE_NUMERIC, ACC_STYLE_GROUND_TRUTH } acc_plot_style;

@@ -18,7 +18,7 @@
 #include <string.h>
 
 #include "biref/color.h"
-#include "spectral/cie1931_table.h"
+#include "color/cie1931_table.h"
 
 /* ---- CIE 1931 table ------------------------------------------------------ */
 

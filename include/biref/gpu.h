@@ -1,0 +1,46 @@
+/* biref — the analytic method on the GPU: one GLSL source (shaders/biref_analytic.glsl, also
+ * compiled into the library) for desktop OpenGL >= 4.3 core and WebGL2 (GLSL ES 3.00).
+ * docs/GPU.md shows how to embed it.
+ *
+ * The shader's data comes from this library, so the CPU and GPU paths share one source of
+ * truth: the look-up table of S(cos kD), S(sin kD) (biref_gl_table) and a scene's uniforms
+ * (biref_gl_scene_uniforms: the same frames, radiances and polarizers as biref_renderer).
+ * Nothing here calls OpenGL: `biref render --backend gl` runs the shader through EGL. */
+#ifndef BIREF_GPU_H
+#define BIREF_GPU_H
+
+#include "biref/common.h"
+#include "biref/render.h"
+#include "biref/spectral.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The GLSL source, without a #version line (its header comment lists the defines a loader adds). */
+BIREF_API const char *biref_gl_shader_source(void);
+
+/* Look-up table as an RGBA float texture of width x height (= 4) texels, row-major, row 0 first:
+ * rows 0-2 hold band j's demodulated F_j at node m as (re, im, dre/dD, dim/dD), row 3 the
+ * carrier e^{2 pi i nu_c m step} as (cos, sin, 0, 0), computed in double precision. */
+typedef struct {
+    int width, height;
+    double step_nm, d_max_nm, d_far_nm, nu_c, lambda_min_nm, lambda_max_nm;
+    double edge_lo[3], edge_hi[3], k_centroid[3];
+} biref_gl_table_info;
+
+/* Fills info and, if texels is not NULL, width * height * 4 floats. */
+BIREF_API void biref_gl_table(const biref_spectral *sp, biref_gl_table_info *info, float *texels);
+
+/* Every uniform of the scene shader except the sampler u_lut, as (name, components 1-4, array
+ * count, values): camera, slabs, panels, environment, polarizer and analyzer, look-up-table
+ * constants and the XYZ -> linear sRGB matrix. The scene must be valid (biref_scene_validate). */
+typedef void (*biref_gl_uniform_fn)(void *user, const char *name, int components, int count, const float *v);
+BIREF_API void biref_gl_scene_uniforms(const biref_scene *scene, const biref_spectral *sp, biref_gl_uniform_fn fn,
+                                       void *user);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* BIREF_GPU_H */

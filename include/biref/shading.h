@@ -1,0 +1,73 @@
+/*
+ * biref — shading one surface hit in world space, for renderers that trace their own rays.
+ *
+ * A renderer knows, at a hit, the surface normal and tangent, the slab's constants and optic
+ * axis (in the surface's local frame, as in scene files) and the view direction. The library
+ * builds the paper's two frames of that ray (transmission: light from behind; reflection: light
+ * from the viewer's side, docs/SCENES.md "Frames"), evaluates the slab in each and returns the
+ * band-normalised XYZ factors by which the radiance behind and the radiance along the mirror
+ * direction are multiplied. biref's own ray caster uses the same code.
+ */
+#ifndef BIREF_SHADING_H
+#define BIREF_SHADING_H
+
+#include "biref/common.h"
+#include "biref/optics.h"
+#include "biref/render.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* A slab at a surface hit, in world coordinates. */
+typedef struct {
+    double normal[3];  /* surface normal (local +y), either orientation; normalised by biref */
+    double tangent[3]; /* local +x; orthogonalised against the normal by biref */
+    double axis[3];    /* optic axis in the local frame: x = tangent, y = normal, z = x cross y */
+    double eta_o, eta_e;
+    double thickness_nm;
+    double eta_i;      /* surrounding medium, both sides (1 = vacuum) */
+} biref_surface;
+
+/* The paper's frames of one view ray at a hit, in world coordinates. */
+typedef struct {
+    double theta;             /* angle of incidence (rad), clamped just below pi/2 for grazing rays */
+    double x_T[3], y_T[3];    /* transmission frame: y_T = normal pointing away from the viewer */
+    double z[3];              /* shared z: the view ray's tangential direction (the tangent at normal incidence) */
+    double x_R[3], y_R[3];    /* reflection frame: y_R = -y_T, x_R = -x_T */
+    double k_view[3];         /* travel direction of the light reaching the viewer (-view_dir) */
+    double mirror[3];         /* from the hit towards the light that reflects into the viewer */
+    biref_slab slab;          /* the slab with its optic axis in the transmission frame */
+} biref_hit_frames;
+
+/* Frames of the ray travelling along view_dir (viewer -> hit, need not be unit) that hits s.
+ * BIREF_ERR_INVALID for non-finite or zero vectors, a tangent parallel to the normal, or a view
+ * direction in the surface plane (an edge-on thin slab is invisible). */
+BIREF_API biref_status biref_hit_frames_make(const biref_surface *s, const double view_dir[3], biref_hit_frames *out);
+
+/* The spectral method, light polarisation and analyzer shared by every hit; immutable, may be used
+ * by several threads. Same semantics as a scene's "light.polarization" and "filter"
+ * (docs/SCENES.md "Polarisation"): s/p are relative to each ray's plane of incidence, "linear"
+ * ones are world-fixed (they need a method other than analytic). NULL light = unpolarized, NULL
+ * filter = none. */
+typedef struct biref_shader biref_shader;
+
+BIREF_API biref_status biref_shader_create(const biref_render_options *opt, const biref_polarization *light,
+                                           const biref_filter *filter, biref_shader **out, char *msg,
+                                           size_t msg_len);
+BIREF_API void biref_shader_destroy(biref_shader *sh);
+
+/* Shades one hit: T_xyz multiplies the radiance arriving from behind the slab along view_dir,
+ * R_xyz the radiance arriving from the mirror direction (frames->mirror; frames may be NULL).
+ * Band-normalised XYZ: a white light behind an empty scene of radiance 1 gives T + R = (1, 1, 1)
+ * for unpolarized light without analyzer (lossless slab). BIREF_ERR_INVALID for a bad surface or
+ * direction (see biref_hit_frames_make); BIREF_ERR_ILLCOND when the evaluation breaks down
+ * (outputs then undefined: biref's renderer shows a perfect mirror). No allocation. */
+BIREF_API biref_status biref_shade_hit(const biref_shader *sh, const biref_surface *s, const double view_dir[3],
+                                       double T_xyz[3], double R_xyz[3], biref_hit_frames *frames);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* BIREF_SHADING_H */

@@ -1,0 +1,582 @@
+"""biref: birefringence-induced iridescence of uniaxial slabs, from Python.
+
+A thin layer over the C library libbiref (through cffi). Names and units follow the command
+line: ``biref.slab(...)`` takes the options of ``biref slab`` (``--eta-o`` -> ``eta_o``,
+``--thickness-mm`` -> ``thickness_mm``, angles in degrees, wavelengths in nm) and returns the
+fields of ``biref slab --json``; likewise ``spectrum``, ``render`` and ``photoelastic``.
+
+Frame (docs/CONVENTIONS.md): slab surface y = 0, slab below, light in the YZ plane; the optic
+axis is given in that frame and normalised by biref.
+"""
+import json as _json
+import math as _math
+import os as _os
+
+import numpy as _np
+
+from ._native import ffi as _ffi, lib as _lib, library_path
+
+__all__ = ["slab", "spectrum", "render", "photoelastic", "BirefError", "library_path", "__version__"]
+__version__ = "0.1.0"
+
+_SP = ("s", "p")
+_MSG = 320
+
+
+class BirefError(RuntimeError):
+    """The library refused a computation for a reason other than bad input (numerical failure)."""
+
+
+def _status(s):
+    return _ffi.string(_lib.biref_status_string(s)).decode()
+
+
+def _check(s, what):
+    if s != _lib.BIREF_OK:
+        if s == _lib.BIREF_ERR_INVALID:
+            raise ValueError(f"{what}: {_status(s)}")
+        raise BirefError(f"{what}: {_status(s)}")
+
+
+def _msg_error(s, msg, exc=ValueError):
+    text = _ffi.string(msg).decode(errors="replace") or _status(s)
+    raise (exc if s == _lib.BIREF_ERR_INVALID else BirefError)(text)
+
+
+def _thickness_nm(thickness_mm, thickness_um, thickness_nm):
+    given = [(v, f) for v, f in ((thickness_mm, 1e6), (thickness_um, 1e3), (thickness_nm, 1.0)) if v is not None]
+    if not given:
+        raise ValueError("missing thickness_um (or thickness_mm, thickness_nm)")
+    if len(given) > 1:
+        raise ValueError("thickness given twice (use one of thickness_mm, thickness_um, thickness_nm)")
+    return float(given[0][0]) * given[0][1]
+
+
+def _make_slab(eta_o, eta_e, axis, thickness_mm, thickness_um, thickness_nm, eta_i):
+    """A checked biref_slab with its axis normalised, as the CLI builds it."""
+    a = [float(x) for x in axis]
+    if len(a) != 3:
+        raise ValueError("axis: expected 3 numbers")
+    slab = _ffi.new("biref_slab *")
+    slab.eta_o, slab.eta_e, slab.eta_i = float(eta_o), float(eta_e), float(eta_i)
+    slab.axis = a
+    slab.thickness_nm = _thickness_nm(thickness_mm, thickness_um, thickness_nm)
+    msg = _ffi.new("char[]", _MSG)
+    s = _lib.biref_slab_check(slab, msg, _MSG)
+    if s != _lib.BIREF_OK:
+        _msg_error(s, msg)
+    _lib.biref_axis_normalize(slab.axis, slab.axis)
+    return slab
+
+
+def _theta_rad(theta_deg):
+    t = float(theta_deg) * _math.pi / 180.0
+    msg = _ffi.new("char[]", _MSG)
+    s = _lib.biref_theta_check(t, msg, _MSG)
+    if s != _lib.BIREF_OK:
+        raise ValueError("theta_deg: " + _ffi.string(msg).decode())
+    return t
+
+
+def _input(slab, theta_deg, **extra):
+    d = {"eta_o": slab.eta_o, "eta_e": slab.eta_e, "axis": list(slab.axis), "thickness_nm": slab.thickness_nm,
+         "theta_deg": theta_deg}
+    d.update(extra)
+    d["eta_i"] = slab.eta_i
+    return d
+
+
+def _sp_matrix(m):
+    return {_SP[i]: {_SP[o]: m[i][o] for o in range(2)} for i in range(2)}
+
+
+def _prepare(slab, theta):
+    st = _ffi.new("biref_slab_state *")
+    _check(_lib.biref_slab_prepare(slab, theta, st), "slab")
+    return st
+
+
+def _modes(st):
+    names = ("o_down", "e_down", "o_up", "e_up")
+    m = st.modes
+    out = {}
+    for i, name in enumerate(names):
+        out[name] = {
+            "q": [m.q[i].real, m.q[i].imag],
+            "E": [[m.E[i][k].real, m.E[i][k].imag] for k in range(3)],
+            "poynting": [m.poynting[i][k] for k in range(3)],
+            "eta_eff": m.eta_eff[i] if _math.isfinite(m.eta_eff[i]) else None,  # evanescent
+        }
+    return out
+
+
+def slab(eta_o, eta_e, axis, thickness_mm=None, thickness_um=None, thickness_nm=None, theta_deg=0.0,
+         lambda_nm=550.0, eta_i=1.0, method="closed-form"):
+    """Transmission and reflection of a plane wave by the slab: the fields of ``biref slab --json``.
+
+    T and R are power fractions indexed [input s/p][output s/p]; jones_T/jones_R the complex
+    amplitudes as [re, im]. theta_deg and lambda_nm may be numpy arrays (broadcast together): the
+    leaves of T, R, energy and K are then arrays of the broadcast shape, jones_T/jones_R complex
+    arrays, and the per-angle details (K_max, modes) are left out. method: "closed-form" (paper
+    eq. 17) or "tmm" (the independent 4x4 transfer matrix).
+    """
+    if method not in ("closed-form", "tmm"):
+        raise ValueError(f"method: expected closed-form or tmm, got {method!r}")
+    sl = _make_slab(eta_o, eta_e, axis, thickness_mm, thickness_um, thickness_nm, eta_i)
+    if _np.ndim(theta_deg) == 0 and _np.ndim(lambda_nm) == 0:
+        return _slab_one(sl, float(theta_deg), float(lambda_nm), method)
+    th, lam = _np.broadcast_arrays(_np.asarray(theta_deg, dtype=float), _np.asarray(lambda_nm, dtype=float))
+    if not _np.all(lam > 0):
+        raise ValueError("lambda_nm: must be positive")
+    JT = _np.empty(th.shape + (2, 2), dtype=complex)
+    JR = _np.empty_like(JT)
+    K = _np.empty(th.shape)
+    tot = _np.empty(th.shape, dtype=bool)
+    T = _ffi.new("biref_jones *")
+    R = _ffi.new("biref_jones *")
+    states = {}
+    for idx in _np.ndindex(th.shape):
+        t = float(th[idx])
+        st = states.get(t)
+        if st is None:
+            st = states[t] = _prepare(sl, _theta_rad(t))
+        if method == "tmm":
+            _check(_lib.biref_slab_jones_tmm(sl, st.theta, float(lam[idx]), T, R), "tmm")
+        else:
+            _lib.biref_slab_jones_at(st, float(lam[idx]), T, R)
+        JT[idx] = [[T.m[i][o] for o in range(2)] for i in range(2)]
+        JR[idx] = [[R.m[i][o] for o in range(2)] for i in range(2)]
+        K[idx] = st.K
+        tot[idx] = bool(st.total_reflection)
+    PT, PR = _np.abs(JT) ** 2, _np.abs(JR) ** 2
+    return {
+        "method": method,
+        "input": _input(sl, th, lambda_nm=lam),
+        "T": _sp_matrix(_np.moveaxis(PT, (-2, -1), (0, 1))),
+        "R": _sp_matrix(_np.moveaxis(PR, (-2, -1), (0, 1))),
+        "jones_T": _sp_matrix(_np.moveaxis(JT, (-2, -1), (0, 1))),
+        "jones_R": _sp_matrix(_np.moveaxis(JR, (-2, -1), (0, 1))),
+        "energy": {_SP[i]: PT[..., i, :].sum(-1) + PR[..., i, :].sum(-1) for i in range(2)},
+        "K": K,
+        "total_reflection": {"any": tot},
+    }
+
+
+def _slab_one(sl, theta_deg, lambda_nm, method):
+    if not lambda_nm > 0:
+        raise ValueError(f"lambda_nm: must be positive, got {lambda_nm:g}")
+    theta = _theta_rad(theta_deg)
+    st = _prepare(sl, theta)
+    T = _ffi.new("biref_jones *")
+    R = _ffi.new("biref_jones *")
+    if method == "tmm":
+        _check(_lib.biref_slab_jones_tmm(sl, theta, lambda_nm, T, R), "tmm")
+    else:
+        _lib.biref_slab_jones_at(st, lambda_nm, T, R)
+    PT = _ffi.new("double[2][2]")
+    PR = _ffi.new("double[2][2]")
+    _lib.biref_jones_intensity(T, PT)
+    _lib.biref_jones_intensity(R, PR)
+    if not all(_math.isfinite(x) for M in (PT, PR) for row in M for x in row):
+        raise BirefError("numerical failure (non-finite result)")
+    pt = [[PT[i][o] for o in range(2)] for i in range(2)]
+    pr = [[PR[i][o] for o in range(2)] for i in range(2)]
+    cj = lambda J: [[[J.m[i][o].real, J.m[i][o].imag] for o in range(2)] for i in range(2)]  # noqa: E731
+    return {
+        "method": method,
+        "input": _input(sl, theta_deg, lambda_nm=lambda_nm),
+        "T": _sp_matrix(pt),
+        "R": _sp_matrix(pr),
+        "jones_T": _sp_matrix(cj(T)),
+        "jones_R": _sp_matrix(cj(R)),
+        "energy": {_SP[i]: pt[i][0] + pt[i][1] + pr[i][0] + pr[i][1] for i in range(2)},
+        "K": st.K,
+        "K_max": {"o": st.modes.K_max_o, "e": st.modes.K_max_e},
+        "total_reflection": {"o": bool(st.modes.evanescent_o), "e": bool(st.modes.evanescent_e),
+                             "any": bool(st.total_reflection)},
+        "modes": _modes(st),
+    }
+
+
+# --------------------------------------------------------------------------------------------
+# Spectra
+# --------------------------------------------------------------------------------------------
+
+_METHODS = ("analytic", "numeric", "ground-truth", "expansion")
+
+
+def _method(name):
+    m = _ffi.new("biref_method *")
+    if not isinstance(name, str) or _lib.biref_method_from_name(name.encode(), m) != _lib.BIREF_OK:
+        raise ValueError(f"method: expected one of {', '.join(_METHODS)}, got {name!r}")
+    return m[0]
+
+
+def _light(polarization, polarizer, stokes, analyzer):
+    """(w_in, mask, stokes or None, P or None, names): the paper's s/p model, or a general state."""
+    w_in, mask = [0.5, 0.5], [1.0, 1.0]
+    S, P = None, None
+    if polarizer is not None and stokes is not None:
+        raise ValueError("polarizer and stokes exclude each other")
+    if polarizer is not None:
+        kind, _, val = str(polarizer).partition(":")
+        if kind == "linear":
+            a = float(val) * _math.pi / 180.0
+            S = [1.0, _math.cos(2 * a), _math.sin(2 * a), 0.0]
+        elif kind == "circular" and val in ("+1", "1", "-1"):
+            S = [1.0, 0.0, 0.0, float(int(val))]
+        else:
+            raise ValueError(f"polarizer: expected linear:DEG or circular:+1|-1, got {polarizer!r}")
+        pol_name = str(polarizer)
+    elif stokes is not None:
+        S = [float(x) for x in stokes]
+        if len(S) != 4:
+            raise ValueError("stokes: expected S0, S1, S2, S3")
+        pol_name = "stokes:" + ",".join(f"{x:g}" for x in S)
+    else:
+        if isinstance(polarization, str):
+            table = {"s": [1.0, 0.0], "p": [0.0, 1.0], "unpolarized": [0.5, 0.5]}
+            if polarization not in table:
+                raise ValueError(f"polarization: expected s, p, unpolarized or (S, P) weights, got {polarization!r}")
+            w_in = table[polarization]
+        else:
+            w = [float(x) for x in polarization]
+            if len(w) != 2 or min(w) < 0 or not sum(w) > 0:
+                raise ValueError("polarization: weights must be two non-negative numbers, not both zero")
+            w_in = [w[0] / sum(w), w[1] / sum(w)]
+        pol_name = None
+    an = str(analyzer)
+    if an.startswith("linear:"):
+        P = _ffi.new("biref_complex[2][2]")
+        _lib.biref_analyzer_linear(float(an[7:]) * _math.pi / 180.0, P)
+    elif an.startswith("circular:"):
+        if an[9:] not in ("+1", "1", "-1"):
+            raise ValueError(f"analyzer: expected circular:+1 or circular:-1, got {analyzer!r}")
+        P = _ffi.new("biref_complex[2][2]")
+        _lib.biref_analyzer_circular(int(an[9:]), P)
+    elif an in ("none", "s", "p"):
+        mask = {"none": [1.0, 1.0], "s": [1.0, 0.0], "p": [0.0, 1.0]}[an]
+    else:
+        raise ValueError(f"analyzer: expected none, s, p, linear:DEG or circular:+1|-1, got {analyzer!r}")
+    return w_in, mask, S, P, pol_name, an
+
+
+def spectrum(eta_o, eta_e, axis, thickness_mm=None, thickness_um=None, thickness_nm=None, theta_deg=0.0,
+             eta_i=1.0, method="analytic", samples=None, order=None, tolerance=None, cmf="cie1931",
+             range_nm=(380.0, 700.0), polarization="unpolarized", polarizer=None, stokes=None, analyzer="none"):
+    """Colour of the light transmitted and reflected by the slab: the fields of ``biref spectrum --json``.
+
+    T and R are band-normalised XYZ ([input s/p][output s/p] -> [X, Y, Z]); "mixed" holds the colour
+    for the incident light (polarization s/p/unpolarized/(S, P) weights, or a fully polarised
+    ``polarizer`` "linear:DEG" / "circular:+1", or ``stokes``) seen through ``analyzer``. General
+    states (polarizer, stokes, linear/circular analyzers) need method numeric, ground-truth or
+    expansion, as on the command line. theta_deg may be a numpy array: every leaf then gains its
+    shape in front of the colour axis.
+    """
+    m = _method(method)
+    if samples is not None and m != _lib.BIREF_METHOD_NUMERIC:
+        raise ValueError(f"samples: only valid with method numeric (method is {method})")
+    if (order is not None or tolerance is not None) and m != _lib.BIREF_METHOD_EXPANSION:
+        raise ValueError(f"{'order' if order is not None else 'tolerance'}: only valid with method expansion")
+    if order is not None and tolerance is not None:
+        raise ValueError("order and tolerance exclude each other")
+    w_in, mask, S, P, pol_name, an_name = _light(polarization, polarizer, stokes, analyzer)
+    general_in, general_an = S is not None, P is not None
+    general = general_in or general_an
+    if general and m == _lib.BIREF_METHOD_ANALYTIC:
+        raise ValueError(("polarizer/stokes" if general_in else "analyzer linear/circular") +
+                         " needs method numeric, ground-truth or expansion (the paper's method handles s/p only)")
+    if S is None:
+        S = [1.0, w_in[0] - w_in[1], 0.0, 0.0]
+    if P is None:
+        P = _ffi.new("biref_complex[2][2]")
+        P[0][0], P[1][1] = mask
+    C = _ffi.new("biref_complex[2][2]")
+    _check(_lib.biref_stokes_to_coherency(S, C), "stokes: not a physical Stokes vector "
+                                                 "(need S0 >= 0 and S1^2+S2^2+S3^2 <= S0^2)")
+    eopts = _ffi.new("biref_expansion_opts *")
+    _lib.biref_expansion_opts_default(eopts)
+    if order is not None:
+        if not 0 <= int(order) <= 8:
+            raise ValueError("order: must be 0-8")
+        eopts.order = int(order)
+    if tolerance is not None:
+        if not 0 < float(tolerance) < 1:
+            raise ValueError("tolerance: must be in (0, 1)")
+        eopts.tolerance = float(tolerance)
+    n_samples = (int(samples) if samples is not None else 64) if m == _lib.BIREF_METHOD_NUMERIC else \
+        16384 if m == _lib.BIREF_METHOD_GROUND_TRUTH else 0
+    if m == _lib.BIREF_METHOD_NUMERIC and not 1 <= n_samples <= 65536:
+        raise ValueError("samples: must be between 1 and 65536")
+
+    sl = _make_slab(eta_o, eta_e, axis, thickness_mm, thickness_um, thickness_nm, eta_i)
+    cfg = _ffi.new("biref_spectral_config *")
+    _lib.biref_spectral_config_default(cfg)
+    kind = _ffi.new("biref_cmf_kind *")
+    if _lib.biref_cmf_kind_from_name(str(cmf).encode(), kind) != _lib.BIREF_OK:
+        raise ValueError(f"cmf: expected cie1931 or wyman2013, got {cmf!r}")
+    cfg.cmf = kind[0]
+    cfg.lambda_min_nm, cfg.lambda_max_nm = (float(x) for x in range_nm)
+    spp = _ffi.new("biref_spectral **")
+    s = _lib.biref_spectral_create(cfg, spp)
+    if s != _lib.BIREF_OK:
+        raise ValueError(f"range_nm: no usable band {tuple(range_nm)} for {cmf}")
+    sp = _ffi.gc(spp[0], _lib.biref_spectral_destroy)
+    plan = None
+    if n_samples:
+        pp = _ffi.new("biref_numeric_plan **")
+        _check(_lib.biref_numeric_plan_create(sp, n_samples, pp), "numeric plan")
+        plan = _ffi.gc(pp[0], _lib.biref_numeric_plan_destroy)
+
+    thetas = _np.asarray(theta_deg, dtype=float)
+    spec = _ffi.new("biref_spectrum *")
+    T_all = _np.empty(thetas.shape + (2, 2, 3))
+    R_all = _np.empty_like(T_all)
+    mixed = _np.empty(thetas.shape + (2, 3))
+    tot = _np.empty(thetas.shape, dtype=bool)
+    xyz = _ffi.new("double[3]")
+    order_used = _ffi.new("int *")
+    orders = _np.full(thetas.shape + (2,), -1, dtype=int)
+    for idx in _np.ndindex(thetas.shape):
+        st = _prepare(sl, _theta_rad(thetas[idx]))
+        tot[idx] = bool(st.total_reflection)
+        if plan is not None:
+            _lib.biref_spectrum_numeric(plan, st, spec)
+        elif m == _lib.BIREF_METHOD_EXPANSION:
+            _check(_lib.biref_spectrum_expansion(sp, st, eopts, spec), "expansion")
+        else:
+            _lib.biref_spectrum_analytic(sp, st, spec)
+        T_all[idx] = _np.array(_ffi.unpack(_ffi.cast("double *", spec.T), 12)).reshape(2, 2, 3)
+        R_all[idx] = _np.array(_ffi.unpack(_ffi.cast("double *", spec.R), 12)).reshape(2, 2, 3)
+        for w in range(2):
+            if general and plan is not None:
+                _lib.biref_spectrum_numeric_polarized(plan, st, w, C, P, xyz)
+            elif m == _lib.BIREF_METHOD_EXPANSION:
+                _check(_lib.biref_spectrum_expansion_polarized(sp, st, w, C, P, eopts, xyz, order_used), "expansion")
+                orders[idx + (w,)] = order_used[0]
+            else:
+                _lib.biref_spectrum_mix(spec.R if w else spec.T, w_in, mask, xyz)
+            mixed[idx + (w,)] = list(xyz)
+    if not (_np.all(_np.isfinite(T_all)) and _np.all(_np.isfinite(R_all)) and _np.all(_np.isfinite(mixed))):
+        raise BirefError("numerical failure (non-finite result)")
+    srgb = _np.empty_like(mixed)
+    rgb = _ffi.new("double[3]")
+    for idx in _np.ndindex(mixed.shape[:-1]):
+        _lib.biref_xyz_to_srgb(list(mixed[idx]), rgb)
+        srgb[idx] = list(rgb)
+
+    scalar = thetas.ndim == 0
+
+    def leaf(a):
+        return a.tolist() if scalar else a
+
+    def pairs(A):
+        return {_SP[i]: {_SP[o]: leaf(A[..., i, o, :]) for o in range(2)} for i in range(2)}
+
+    pol = {"s": w_in[0], "p": w_in[1], "stokes": S} if not general_in else {"state": pol_name, "stokes": S}
+    result = {
+        "method": _ffi.string(_lib.biref_method_name(m)).decode(),
+        "samples": n_samples or None,
+        "cmf": str(cmf),
+        "range_nm": [cfg.lambda_min_nm, cfg.lambda_max_nm],
+        "input": _input(sl, float(thetas) if scalar else thetas),
+        "total_reflection": bool(tot) if scalar else tot,
+        "T": pairs(T_all),
+        "R": pairs(R_all),
+        "mixed": {
+            "polarization": pol,
+            "analyzer": an_name,
+            "T_xyz": leaf(mixed[..., 0, :]),
+            "R_xyz": leaf(mixed[..., 1, :]),
+            "T_srgb": leaf(srgb[..., 0, :]),
+            "R_srgb": leaf(srgb[..., 1, :]),
+            "srgb_note": "encoded sRGB (IEC 61966-2-1), white E -> (1,1,1), not clamped",
+        },
+    }
+    if m == _lib.BIREF_METHOD_EXPANSION:
+        # The pair order the adaptive (or fixed) expansion used for the mixed colours.
+        result["expansion_order"] = {"T": leaf(orders[..., 0]), "R": leaf(orders[..., 1])}
+    return result
+
+
+# --------------------------------------------------------------------------------------------
+# Images
+# --------------------------------------------------------------------------------------------
+
+def _convert(xyz, n, space):
+    """(n*3,) float32 XYZ buffer -> numpy float array in the requested colour space."""
+    out = _np.frombuffer(_ffi.buffer(xyz, n * 3 * 4), dtype=_np.float32).astype(_np.float64)
+    if space == "xyz":
+        return out
+    rgb = _ffi.new("float[]", n * 3)
+    _lib.biref_xyz_image_to_linear_srgb(xyz, n, rgb)
+    lin = _np.frombuffer(_ffi.buffer(rgb, n * 3 * 4), dtype=_np.float32).astype(_np.float64)
+    if space == "linear_srgb":
+        return lin
+    # Encoded sRGB, unclamped (odd extension of the transfer curve, like biref_srgb_encode).
+    a = _np.abs(lin)
+    enc = _np.where(a <= 0.0031308, 12.92 * a, 1.055 * a ** (1 / 2.4) - 0.055)
+    return _np.sign(lin) * enc
+
+
+_SPACES = ("linear_srgb", "srgb", "xyz")
+
+
+def render(scene, method="analytic", width=None, height=None, samples=None, order=None, tolerance=None,
+           threads=0, space="linear_srgb"):
+    """Renders a scene (a path to a scene file or the scene as a dict, docs/SCENES.md) like
+    ``biref render``; returns a numpy float array of shape (height, width, 3).
+
+    space: "linear_srgb" (default; white E -> (1, 1, 1), not clamped), "srgb" (encoded, not
+    clamped) or "xyz" (band-normalised CIE XYZ). The camera's exposure is applied.
+    """
+    if space not in _SPACES:
+        raise ValueError(f"space: expected one of {', '.join(_SPACES)}, got {space!r}")
+    if isinstance(scene, dict):
+        text = _json.dumps(scene).encode()
+    elif isinstance(scene, (str, bytes, _os.PathLike)):
+        with open(scene, "rb") as f:
+            text = f.read()
+    else:
+        raise TypeError("scene: expected a path or a dict")
+    sc = _ffi.new("biref_scene *")
+    msg = _ffi.new("char[]", _MSG)
+    s = _lib.biref_scene_parse(text, len(text), sc, msg, _MSG)
+    if s != _lib.BIREF_OK:
+        _msg_error(s, msg)
+    for name, v in (("width", width), ("height", height)):
+        if v is not None:
+            if int(v) != v or not 1 <= int(v) <= 16384:
+                raise ValueError(f"{name}: must be an integer between 1 and 16384")
+            setattr(sc.camera, name, int(v))
+    s = _lib.biref_scene_validate(sc, msg, _MSG)
+    if s != _lib.BIREF_OK:
+        _msg_error(s, msg)
+    opt = _ffi.new("biref_render_options *")
+    _lib.biref_render_options_default(opt)
+    opt.method = _method(method)
+    if samples is not None:
+        if opt.method != _lib.BIREF_METHOD_NUMERIC:
+            raise ValueError(f"samples: only valid with method numeric (method is {method})")
+        opt.samples = int(samples)
+    if order is not None or tolerance is not None:
+        if opt.method != _lib.BIREF_METHOD_EXPANSION:
+            raise ValueError("order/tolerance: only valid with method expansion")
+        if order is not None:
+            opt.expansion.order = int(order)
+        if tolerance is not None:
+            opt.expansion.tolerance = float(tolerance)
+    opt.threads = int(threads)
+    rp = _ffi.new("biref_renderer **")
+    s = _lib.biref_renderer_create(sc, opt, rp, msg, _MSG)
+    if s != _lib.BIREF_OK:
+        _msg_error(s, msg)
+    r = _ffi.gc(rp[0], _lib.biref_renderer_destroy)
+    w, h = _lib.biref_renderer_width(r), _lib.biref_renderer_height(r)
+    xyz = _ffi.new("float[]", w * h * 3)
+    _check(_lib.biref_render_image(r, xyz, _ffi.NULL, _ffi.NULL, _ffi.NULL), "render")
+    return _convert(xyz, w * h, space).reshape(h, w, 3)
+
+
+_PRESETS = {"disk": 0, "hole": 1, "beam": 2}
+
+
+def photoelastic(preset="disk", stress_grid=None, thickness_mm=None, radius_mm=None, load_N=500.0, stress_MPa=4.0,
+                 width_mm=60.0, height_mm=None, tension_deg=0.0, length_mm=100.0, depth_mm=20.0, moment_Nmm=2000.0,
+                 material="polycarbonate", n0=None, C_brewster=None, eta_i=1.0, polariscope="circular",
+                 field="dark", polarizer_deg=0.0, light="white", lambda_nm=589.0, size=512, supersample=2,
+                 tilt_deg=0.0, exposure=1.0, threads=0, space="linear_srgb"):
+    """A stressed plate in a polariscope, like ``biref photoelastic -o``: a numpy float array of
+    shape (height, width, 3) whose longer side has ``size`` pixels.
+
+    preset "disk" (radius_mm 25, load_N), "hole" (radius_mm 5, width_mm, height_mm, stress_MPa,
+    tension_deg) or "beam" (length_mm, depth_mm, moment_Nmm); or stress_grid, a CSV file with
+    columns x_mm,y_mm,sxx_MPa,syy_MPa,txy_MPa. Units and defaults as on the command line.
+    """
+    if space not in _SPACES:
+        raise ValueError(f"space: expected one of {', '.join(_SPACES)}, got {space!r}")
+    setup = _ffi.new("biref_pe_setup *")
+    if _lib.biref_pe_material_preset(str(material).encode(), _ffi.addressof(setup, "material")) != _lib.BIREF_OK:
+        names = [_ffi.string(_lib.biref_pe_material_at(i).name).decode() for i in range(_lib.biref_pe_material_count())]
+        raise ValueError(f"material: expected one of {', '.join(names)}, got {material!r}")
+    keep = []
+    if n0 is not None or C_brewster is not None:
+        keep += [_ffi.new("char[]", b"custom"), _ffi.new("char[]", b"user")]
+        setup.material.name, setup.material.source = keep
+        if n0 is not None:
+            setup.material.n0 = float(n0)
+        if C_brewster is not None:
+            setup.material.C_per_Pa = float(C_brewster) * 1e-12
+    msg = _ffi.new("char[]", _MSG)
+    s = _lib.biref_pe_material_check(_ffi.addressof(setup, "material"), msg, _MSG)
+    if s != _lib.BIREF_OK:
+        raise ValueError("material: " + _ffi.string(msg).decode())
+    mm = 1e-3
+    fld = _ffi.new("biref_pe_field *")
+    grid = None
+    if stress_grid is not None:
+        gp = _ffi.new("biref_pe_grid **")
+        s = _lib.biref_pe_grid_load(str(stress_grid).encode(), gp, msg, _MSG)
+        if s != _lib.BIREF_OK:
+            _msg_error(s, msg)
+        grid = _ffi.gc(gp[0], _lib.biref_pe_grid_destroy)
+        h = (6.0 if thickness_mm is None else float(thickness_mm)) * mm
+        s = _lib.biref_pe_field_grid(fld, grid, h, msg, _MSG)
+    elif preset in _PRESETS:
+        h = ((3.0 if preset == "hole" else 6.0) if thickness_mm is None else float(thickness_mm)) * mm
+        if preset == "disk":
+            s = _lib.biref_pe_field_disk(fld, (25.0 if radius_mm is None else radius_mm) * mm, h, float(load_N), msg,
+                                         _MSG)
+        elif preset == "hole":
+            s = _lib.biref_pe_field_hole(fld, (5.0 if radius_mm is None else radius_mm) * mm, width_mm * mm,
+                                         (width_mm if height_mm is None else height_mm) * mm, h, stress_MPa * 1e6,
+                                         tension_deg * _math.pi / 180.0, msg, _MSG)
+        else:
+            s = _lib.biref_pe_field_beam(fld, length_mm * mm, depth_mm * mm, h, moment_Nmm * 1e-3, msg, _MSG)
+    else:
+        raise ValueError(f"preset: expected disk, hole or beam (or stress_grid), got {preset!r}")
+    if s != _lib.BIREF_OK:
+        _msg_error(s, msg)
+    kinds = {"plane": _lib.BIREF_PE_PLANE, "circular": _lib.BIREF_PE_CIRCULAR}
+    fields = {"dark": _lib.BIREF_PE_DARK, "light": _lib.BIREF_PE_LIGHT}
+    lights = {"white": _lib.BIREF_PE_WHITE, "mono": _lib.BIREF_PE_MONO}
+    for name, v, table in (("polariscope", polariscope, kinds), ("field", field, fields), ("light", light, lights)):
+        if v not in table:
+            raise ValueError(f"{name}: expected {' or '.join(table)}, got {v!r}")
+    if not (0.0 <= float(tilt_deg) <= 80.0):
+        raise ValueError("tilt_deg: must be in [0, 80]")
+    if not (float(exposure) > 0 and _math.isfinite(exposure)):
+        raise ValueError("exposure: must be positive")
+    if not (1 <= int(supersample) <= 8) or not (1 <= int(size) <= 16384):
+        raise ValueError("supersample must be 1-8 and size 1-16384")
+    if not float(lambda_nm) > 0:
+        raise ValueError("lambda_nm: must be positive")
+    setup.thickness = h
+    setup.eta_i = float(eta_i)
+    setup.light = lights[light]
+    setup.lambda_nm = float(lambda_nm)
+    _lib.biref_pe_polariscope_make(kinds[polariscope], fields[field], float(polarizer_deg) * _math.pi / 180.0,
+                                   _ffi.addressof(setup, "pol"))
+    io = _ffi.new("biref_pe_image_opts *")
+    io.supersample, io.threads = int(supersample), int(threads)
+    io.tint = [exposure] * 3
+    io.tilt = float(tilt_deg) * _math.pi / 180.0
+    fw, fh = fld.frame[1] - fld.frame[0], (fld.frame[3] - fld.frame[2]) * _math.cos(io.tilt)
+    io.width = int(size) if fw >= fh else max(1, round(size * fw / fh))
+    io.height = max(1, round(size * fh / fw)) if fw >= fh else int(size)
+    sp = _ffi.NULL
+    if light == "white":
+        spp = _ffi.new("biref_spectral **")
+        _check(_lib.biref_spectral_create(_ffi.NULL, spp), "spectral tables")
+        sp = _ffi.gc(spp[0], _lib.biref_spectral_destroy)
+    n = io.width * io.height
+    xyz = _ffi.new("float[]", n * 3)
+    _check(_lib.biref_pe_render(setup, sp, fld, io, xyz), "photoelastic render")
+    img = _convert(xyz, n, "xyz")
+    if light == "white" and exposure != 1.0:
+        img = img * exposure
+    if space != "xyz":
+        buf = _ffi.new("float[]", n * 3)
+        _ffi.buffer(buf)[:] = img.astype(_np.float32).tobytes()
+        img = _convert(buf, n, space)
+    return img.reshape(io.height, io.width, 3)

@@ -1,0 +1,194 @@
+"""The Python bindings against the command line (same numbers as `biref ... --json`) and against
+physics they must keep (energy, the transfer matrix, vectorised calls equal to scalar ones).
+
+Run by ctest (python_bindings) with BIREF_LIBRARY, BIREF_CDEF and BIREF_CLI set; BIREF_CLI
+missing skips the comparisons with the command line.
+"""
+import json
+import math
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import biref
+
+CLI = os.environ.get("BIREF_CLI")
+needs_cli = pytest.mark.skipif(not CLI, reason="BIREF_CLI not set")
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+SLAB = dict(eta_o=1.775, eta_e=1.231, axis=(0.084, 0.979, -0.187))
+SLAB_ARGS = ["--eta-o", "1.775", "--eta-e", "1.231", "--axis", "0.084,0.979,-0.187"]
+
+
+def cli_json(*args):
+    out = subprocess.run([CLI, *args, "--json"], check=True, capture_output=True, text=True).stdout
+    return json.loads(out)
+
+
+def assert_same(got, ref, tol, path="$"):
+    """Every field of the CLI's JSON is present in got with the same value (numbers to tol)."""
+    if isinstance(ref, dict):
+        for k, v in ref.items():
+            assert k in got, f"{path}.{k} missing"
+            assert_same(got[k], v, tol, f"{path}.{k}")
+    elif isinstance(ref, list):
+        assert len(got) == len(ref), path
+        for i, (a, b) in enumerate(zip(got, ref)):
+            assert_same(a, b, tol, f"{path}[{i}]")
+    elif isinstance(ref, bool) or ref is None or isinstance(ref, str):
+        assert got == ref, f"{path}: {got!r} != {ref!r}"
+    else:
+        assert abs(got - ref) <= tol * max(1.0, abs(ref)), f"{path}: {got!r} != {ref!r}"
+
+
+@needs_cli
+@pytest.mark.parametrize("method", ["closed-form", "tmm"])
+def test_slab_matches_cli(method):
+    got = biref.slab(**SLAB, thickness_mm=1.15, theta_deg=30, lambda_nm=550, method=method)
+    ref = cli_json("slab", *SLAB_ARGS, "--thickness-mm", "1.15", "--theta-deg", "30", "--lambda-nm", "550",
+                   "--method", method)
+    assert_same(got, ref, 1e-13)
+
+
+@needs_cli
+def test_slab_total_reflection_matches_cli():
+    kw = dict(eta_o=1.4, eta_e=1.6, axis=(0.2, 0.3, 0.9), thickness_um=2.5, theta_deg=75, lambda_nm=480, eta_i=1.5)
+    ref = cli_json("slab", "--eta-o", "1.4", "--eta-e", "1.6", "--axis", "0.2,0.3,0.9", "--thickness-um", "2.5",
+                   "--theta-deg", "75", "--lambda-nm", "480", "--eta-i", "1.5")
+    assert ref["total_reflection"]["any"]
+    assert_same(biref.slab(**kw), ref, 1e-13)
+
+
+def test_slab_vectorised_equals_scalar_and_conserves_energy():
+    theta = np.array([0.0, 20.0, 45.0, 70.0])
+    lam = np.linspace(400, 700, 7)[:, None]
+    v = biref.slab(**SLAB, thickness_um=12, theta_deg=theta, lambda_nm=lam)
+    assert v["T"]["s"]["p"].shape == (7, 4)
+    np.testing.assert_allclose(v["energy"]["s"], 1.0, atol=1e-12)
+    np.testing.assert_allclose(v["energy"]["p"], 1.0, atol=1e-12)
+    for i, j in [(0, 0), (3, 2), (6, 3)]:
+        one = biref.slab(**SLAB, thickness_um=12, theta_deg=theta[j], lambda_nm=lam[i, 0])
+        for d in ("T", "R"):
+            for a in "sp":
+                for b in "sp":
+                    assert v[d][a][b][i, j] == pytest.approx(one[d][a][b], abs=1e-15)
+        re, im = one["jones_T"]["p"]["s"]
+        assert v["jones_T"]["p"]["s"][i, j] == pytest.approx(complex(re, im), abs=1e-15)
+    # The closed form against the independent 4x4 transfer matrix, over the whole grid.
+    t = biref.slab(**SLAB, thickness_um=12, theta_deg=theta, lambda_nm=lam, method="tmm")
+    for a in "sp":
+        for b in "sp":
+            np.testing.assert_allclose(t["T"][a][b], v["T"][a][b], atol=1e-9)
+            np.testing.assert_allclose(t["R"][a][b], v["R"][a][b], atol=1e-9)
+
+
+@needs_cli
+@pytest.mark.parametrize("extra", [
+    dict(),
+    dict(polarization="p", analyzer="s"),
+    dict(polarization=(0.75, 0.25), cmf="wyman2013", range_nm=(400, 680)),
+    dict(method="numeric", samples=48, polarizer="linear:30", analyzer="circular:-1"),
+    dict(method="expansion", stokes=(1, 0.2, -0.3, 0.5), analyzer="linear:60"),
+    dict(method="expansion", order=2),
+])
+def test_spectrum_matches_cli(extra):
+    args = ["spectrum", *SLAB_ARGS, "--thickness-um", "20", "--theta-deg", "30"]
+    for k, v in extra.items():
+        opt = "--" + k.replace("_", "-")
+        args += [opt, ",".join(f"{x:g}" for x in v) if isinstance(v, tuple) else str(v)]
+    got = biref.spectrum(**SLAB, thickness_um=20, theta_deg=30, **extra)
+    ref = cli_json(*args)
+    if "state" in ref["mixed"]["polarization"]:  # the option's text, spelt by the caller
+        del ref["mixed"]["polarization"]["state"]
+    assert_same(got, ref, 1e-13)
+
+
+def test_spectrum_vectorised_over_theta():
+    theta = np.array([[0.0, 15.0], [40.0, 80.0]])
+    v = biref.spectrum(**SLAB, thickness_um=3, theta_deg=theta, method="expansion")
+    assert v["mixed"]["T_xyz"].shape == (2, 2, 3)
+    one = biref.spectrum(**SLAB, thickness_um=3, theta_deg=40.0, method="expansion")
+    np.testing.assert_allclose(v["mixed"]["T_xyz"][1, 0], one["mixed"]["T_xyz"], rtol=0, atol=1e-15)
+    np.testing.assert_allclose(v["T"]["s"]["p"][1, 0], one["T"]["s"]["p"], rtol=0, atol=1e-15)
+    # Lossless slab, unpolarized light, no analyzer: T + R = white, to the expansion's tolerance.
+    np.testing.assert_allclose(v["mixed"]["T_xyz"] + v["mixed"]["R_xyz"], 1.0, atol=2e-3)
+
+
+def test_bad_input_is_refused_with_the_cli_wording():
+    with pytest.raises(ValueError, match="thickness"):
+        biref.slab(**SLAB)
+    with pytest.raises(ValueError, match="theta_deg"):
+        biref.slab(**SLAB, thickness_um=1, theta_deg=95)
+    with pytest.raises(ValueError):
+        biref.slab(eta_o=float("nan"), eta_e=1.2, axis=(0, 1, 0), thickness_um=1)
+    with pytest.raises(ValueError, match="paper's method handles s/p only"):
+        biref.spectrum(**SLAB, thickness_um=1, polarizer="linear:10")
+    with pytest.raises(ValueError, match="method"):
+        biref.spectrum(**SLAB, thickness_um=1, method="magic")
+    with pytest.raises(ValueError, match="slabs"):
+        biref.render({"camera": {"position": [0, 1, 1], "look_at": [0, 0, 0]}})
+
+
+def small_scene():
+    with open(os.path.join(ROOT, "examples", "fig9a.json"), encoding="utf-8") as f:
+        return json.load(f)
+
+
+@needs_cli
+def test_render_matches_cli(tmp_path):
+    img = biref.render(small_scene(), width=48, height=27)
+    assert img.shape == (27, 48, 3) and np.all(np.isfinite(img))
+    pfm = tmp_path / "a.pfm"
+    subprocess.run([CLI, "render", os.path.join(ROOT, "examples", "fig9a.json"), "-o", str(tmp_path / "a.png"),
+                    "--width", "48", "--height", "27", "--pfm", str(pfm), "-q"], check=True)
+    data = pfm.read_bytes()
+    header_end = 0
+    for _ in range(3):
+        header_end = data.index(b"\n", header_end) + 1
+    ref = np.frombuffer(data[header_end:], dtype="<f4").reshape(27, 48, 3)[::-1]
+    np.testing.assert_allclose(img, ref, atol=1e-6)
+    # A path gives the same image; XYZ and encoded sRGB are the same picture in other spaces.
+    np.testing.assert_array_equal(biref.render(os.path.join(ROOT, "examples", "fig9a.json"), width=48, height=27),
+                                  img)
+    enc = biref.render(small_scene(), width=48, height=27, space="srgb")
+    inside = (img > 0.01) & (img < 0.99)
+    assert np.all(enc[inside] > img[inside])  # the transfer curve lifts values in (0, 1)
+
+
+def test_render_methods_agree():
+    a = biref.render(small_scene(), width=24, height=14)
+    n = biref.render(small_scene(), width=24, height=14, method="numeric", samples=128)
+    assert np.abs(a - n).mean() < 0.01
+
+
+@needs_cli
+def test_photoelastic_matches_cli(tmp_path):
+    img = biref.photoelastic(preset="disk", size=64, supersample=1)
+    h, w, _ = img.shape
+    assert max(h, w) == 64 and np.all(np.isfinite(img))
+    out = tmp_path / "disk.png"
+    info = cli_json("photoelastic", "--preset", "disk", "--size", "64", "--supersample", "1", "-o", str(out))
+    assert [info["width"], info["height"]] == [w, h]
+    # The CLI's 8-bit PNG, read back through the library, is our image encoded and rounded.
+    from biref._native import ffi, lib
+    pw, ph, rgb = ffi.new("int *"), ffi.new("int *"), ffi.new("unsigned char **")
+    msg = ffi.new("char[]", 256)
+    assert lib.biref_png_read_rgb8(str(out).encode(), pw, ph, rgb, msg, 256) == lib.BIREF_OK
+    png = np.frombuffer(ffi.buffer(rgb[0], w * h * 3), dtype=np.uint8).reshape(h, w, 3).astype(int)
+    enc = biref.photoelastic(preset="disk", size=64, supersample=1, space="srgb")
+    mine = np.clip(np.round(np.clip(enc, 0, 1) * 255), 0, 255).astype(int)
+    assert np.abs(mine - png).max() <= 1
+    # Dark-field circular polariscope: no light around the disk; fringes inside.
+    assert img[0, 0].max() < 1e-6
+    assert img[h // 2, w // 2].max() > 0.05
+
+
+def test_photoelastic_mono_and_errors():
+    img = biref.photoelastic(preset="hole", light="mono", lambda_nm=589, size=40, polariscope="plane", field="light")
+    assert np.allclose(img[..., 0], img[..., 1], atol=1e-3)  # grey levels
+    with pytest.raises(ValueError, match="material"):
+        biref.photoelastic(material="unobtainium")
+    with pytest.raises(ValueError, match="preset"):
+        biref.photoelastic(preset="gear")

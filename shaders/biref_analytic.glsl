@@ -1,0 +1,735 @@
+/* biref — the paper's analytic spectral integration (Steinberg 2019, §3-§5) in GLSL.
+ *
+ * One source for desktop GLSL (>= 4.30 core) and GLSL ES 3.00 (WebGL2). The loader prepends
+ *   desktop:  #version 430 core
+ *   WebGL2:   #version 300 es + precision highp float; precision highp int; precision highp sampler2D;
+ * and then one of
+ *   #define BIREF_VERTEX          the full-screen triangle (vertex stage)
+ *   #define BIREF_FRAGMENT        the scene ray caster (fragment stage)
+ * plus BIREF_MAX_SLABS / BIREF_MAX_PANELS (array sizes) and, for a display, BIREF_OUTPUT_SRGB
+ * (8-bit sRGB out instead of linear XYZ). Without BIREF_SCENE only the per-hit-point part is
+ * compiled: paste it into another renderer and call biref_shade_slab (docs/GPU.md).
+ *
+ * Everything is single precision. Where double precision is needed on the CPU, the shader
+ * computes differences directly instead of subtracting large numbers (docs/GPU.md):
+ *   - q_e - q_o = (q_e^2 - q_o^2) / (q_e + q_o) with q_e^2 - q_o^2 proportional to Δε;
+ *   - look-up-table phases are reduced to a node (carrier exported by the library) plus a
+ *     rotation of at most one table step, so no cos/sin sees an argument above ~0.7 rad;
+ *   - the asymptotic far-field phases are reduced to the nearest cycle before cos/sin.
+ * Physics and corrections to the paper: docs/PHYSICS.md; frames: docs/SCENES.md.
+ */
+
+#ifdef BIREF_VERTEX
+void main()
+{
+    /* One triangle covering the viewport: (-1,-1), (3,-1), (-1,3). */
+    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+    gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0);
+}
+#else
+
+const float BIREF_PI = 3.14159265358979;
+
+/* ------------------------------------------------------------------------------------------ */
+/* Complex numbers as vec2 (re, im)                                                            */
+/* ------------------------------------------------------------------------------------------ */
+vec2 cmul(vec2 a, vec2 b) { return vec2(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x); }
+vec2 cconj(vec2 a) { return vec2(a.x, -a.y); }
+vec2 cinv(vec2 z) { float n = 1.0 / dot(z, z); return vec2(z.x * n, -z.y * n); }
+/* conj(a) * b */
+vec2 cmulc(vec2 a, vec2 b) { return vec2(a.x * b.x + a.y * b.y, a.x * b.y - a.y * b.x); }
+float cabs2(vec2 z) { return dot(z, z); }
+float cl1(vec2 z) { return abs(z.x) + abs(z.y); }
+/* sqrt of a real number on the branch used for normal components: i sqrt(-d) when d < 0. */
+vec2 csqrt_real(float d) { return d >= 0.0 ? vec2(sqrt(d), 0.0) : vec2(0.0, sqrt(-d)); }
+
+/* ------------------------------------------------------------------------------------------ */
+/* Look-up table of S(cos kD), S(sin kD) (paper §5.2), exported by the C library               */
+/* ------------------------------------------------------------------------------------------ */
+/* Texture rows 0-2: F_j(D) demodulated by the band centre, (re, im, dre/dD, dim/dD) at node m
+ * (D = m * step); row 3: the carrier e^{2 pi i nu_c m step} (cos, sin). */
+uniform highp sampler2D u_lut;
+uniform vec4 u_lut_grid;     /* step (nm), nodes, d_max, d_far */
+uniform vec4 u_lut_band;     /* nu_c (1/nm), lambda_min, lambda_max, unused */
+uniform vec3 u_lut_edge_lo;  /* Λ_j(λmin) λmin^2: endpoint terms of the asymptotics */
+uniform vec3 u_lut_edge_hi;
+uniform vec3 u_k_centroid;   /* band centroids of 2 pi / λ */
+
+/* e^{2 pi i x} with x reduced to the nearest cycle first (|angle| <= pi). */
+vec2 cycles_exp(float x)
+{
+    float f = x - floor(x + 0.5);
+    float a = 2.0 * BIREF_PI * f;
+    return vec2(cos(a), sin(a));
+}
+
+/* S(cos(2 pi D / λ), Λ_j) and S(sin(...)) for the three bands. */
+void biref_phase_integrals(float D, out vec3 c, out vec3 s)
+{
+    float sgn = 1.0;
+    if (D < 0.0) {
+        D = -D;
+        sgn = -1.0; /* cos even, sin odd */
+    }
+    c = vec3(0.0);
+    s = vec3(0.0);
+    float step_nm = u_lut_grid.x, d_max = u_lut_grid.z, d_far = u_lut_grid.w;
+    if (D > d_far) return;
+    if (D > d_max) {
+        /* Endpoint asymptotics: S(e^{ikD}) ~ i/(2 pi D) [Λ λ^2 e^{2 pi i D/λ}] from λmin to λmax. */
+        vec2 hi = cycles_exp(D / u_lut_band.z), lo = cycles_exp(D / u_lut_band.y);
+        float e = 1.0 / (2.0 * BIREF_PI * D);
+        /* i e (edge_hi hi - edge_lo lo) */
+        vec3 re = u_lut_edge_hi * hi.x - u_lut_edge_lo * lo.x;
+        vec3 im = u_lut_edge_hi * hi.y - u_lut_edge_lo * lo.y;
+        c = -e * im;
+        s = sgn * e * re;
+        return;
+    }
+    float x = D / step_nm;
+    int m = min(int(x), int(u_lut_grid.y) - 2);
+    float t = x - float(m), t2 = t * t, t3 = t2 * t;
+    float h00 = 2.0 * t3 - 3.0 * t2 + 1.0, h10 = t3 - 2.0 * t2 + t, h01 = -2.0 * t3 + 3.0 * t2, h11 = t3 - t2;
+    /* Carrier: the node's (exported in double precision) times a rotation below one step. */
+    vec2 node = texelFetch(u_lut, ivec2(m, 3), 0).xy;
+    float a = 2.0 * BIREF_PI * u_lut_band.x * (D - float(m) * step_nm);
+    vec2 carrier = cmul(node, vec2(cos(a), sin(a)));
+    vec3 fre, fim;
+    for (int j = 0; j < 3; j++) {
+        vec4 A = texelFetch(u_lut, ivec2(m, j), 0), B = texelFetch(u_lut, ivec2(m + 1, j), 0);
+        vec2 f = h00 * A.xy + h10 * step_nm * A.zw + h01 * B.xy + h11 * step_nm * B.zw;
+        vec2 v = cmul(carrier, f);
+        fre[j] = v.x;
+        fim[j] = v.y;
+    }
+    c = fre;
+    s = sgn * fim;
+}
+
+struct PhaseInt {
+    vec3 c, s, att; /* S(cos kD), S(sin kD), e^{-k_j Im D} per band */
+};
+
+/* opd: complex optical path difference; re_opd: its real part computed without cancellation. */
+PhaseInt phase_eval(float re_opd, float im_opd)
+{
+    PhaseInt p;
+    biref_phase_integrals(re_opd, p.c, p.s);
+    p.att = im_opd != 0.0 ? exp(-u_k_centroid * im_opd) : vec3(1.0);
+    return p;
+}
+
+/* h += w * S(Re(coef e^{ikD})) = w (Re coef S(cos) - Im coef S(sin)) */
+void add_re(inout vec3 h, vec3 w, vec2 coef, PhaseInt p) { h += w * p.att * (coef.x * p.c - coef.y * p.s); }
+
+vec3 leg_energy(vec2 opl) { return opl.y != 0.0 ? exp(-2.0 * u_k_centroid * opl.y) : vec3(1.0); }
+
+/* ------------------------------------------------------------------------------------------ */
+/* Modes (paper §3, eqs. 2-3 corrected, docs/PHYSICS.md §1)                                    */
+/* ------------------------------------------------------------------------------------------ */
+/* Mode order: 0 o/s down, 1 e/p down, 2 o/s up, 3 e/p up. E[3 * mode + component]. */
+struct Modes {
+    vec2 q[4];
+    vec2 E[12];
+    vec2 dq_down, dq_up; /* q_e - q_o, computed without cancellation */
+};
+
+void iso_normal(float eps, float K, out vec2 qd, out vec2 qu)
+{
+    vec2 r = csqrt_real(eps - K * K);
+    qd = -r;
+    qu = r;
+}
+
+/* s = x and p = k x s / |k| (degenerate direction or isotropic medium). */
+void sp_fields(inout Modes m, int io, int ie, vec2 q, float K, float eta)
+{
+    m.E[3 * io] = vec2(1.0, 0.0);
+    m.E[3 * io + 1] = vec2(0.0);
+    m.E[3 * io + 2] = vec2(0.0);
+    m.E[3 * ie] = vec2(0.0);
+    m.E[3 * ie + 1] = vec2(-K / eta, 0.0);
+    m.E[3 * ie + 2] = -q / eta;
+}
+
+Modes isotropic_modes(float eta, float K)
+{
+    Modes m;
+    vec2 qd, qu;
+    iso_normal(eta * eta, K, qd, qu);
+    m.q[0] = qd;
+    m.q[1] = qd;
+    m.q[2] = qu;
+    m.q[3] = qu;
+    sp_fields(m, 0, 1, qd, K, eta);
+    sp_fields(m, 2, 3, qu, K, eta);
+    m.dq_down = vec2(0.0);
+    m.dq_up = vec2(0.0);
+    return m;
+}
+
+float herm_norm3(vec2 a, vec2 b, vec2 c) { return sqrt(dot(a, a) + dot(b, b) + dot(c, c)); }
+
+/* Below this relative size E_o = -k x A is taken as zero (k parallel to A). Single precision:
+ * the C library's 1e-9 would be rounding noise here. */
+const float DEGENERATE_REL = 1e-4;
+
+Modes uniaxial_modes(float eta_o, float eta_e, vec3 A, float K)
+{
+    Modes m;
+    float al = A.x, be = A.y, ga = A.z;
+    float eo = eta_o * eta_o, ee = eta_e * eta_e, de = ee - eo;
+    vec2 qod, qou;
+    iso_normal(eo, K, qod, qou);
+    float a = eo + be * be * de;
+    float disc = ee * (eo + be * be * de) + K * K * (al * al * de - ee);
+    vec2 root = csqrt_real(eo * disc);
+    vec2 lin = vec2(be * ga * K * de, 0.0);
+    m.q[0] = qod;
+    m.q[2] = qou;
+    m.q[1] = (lin - root) / a;
+    m.q[3] = (lin + root) / a;
+    for (int dir = 0; dir < 2; dir++) {
+        int io = dir == 1 ? 2 : 0, ie = dir == 1 ? 3 : 1;
+        vec2 qo = m.q[io], qe = m.q[ie];
+        /* eq. 3: E_o = -k x A */
+        vec2 Eo0 = -be * K * vec2(1.0, 0.0) - ga * qo, Eo1 = vec2(al * K, 0.0), Eo2 = al * qo;
+        float scale_o = sqrt(cabs2(qo) + K * K);
+        float no = herm_norm3(Eo0, Eo1, Eo2);
+        /* eq. 3: E_e = eps_o A - (A.k) k */
+        vec2 ak = be * qe - vec2(ga * K, 0.0);
+        vec2 Ee0 = vec2(eo * al, 0.0), Ee1 = vec2(eo * be, 0.0) - cmul(ak, qe), Ee2 = vec2(eo * ga, 0.0) + ak * K;
+        float ne = herm_norm3(Ee0, Ee1, Ee2);
+        /* q_e^2 - q_o^2 = Δε (2 β γ K q_e + ε_o (1 - β^2) + K^2 (β^2 - γ^2)) / a, from the two
+         * dispersion relations: no cancellation, unlike q_e - q_o (docs/GPU.md). */
+        vec2 sum = qe + qo;
+        vec2 dq = qe - qo;
+        if (cabs2(sum) > 1e-8 * eo) {
+            vec2 num = de * (2.0 * be * ga * K * qe + vec2(eo * (1.0 - be * be) + K * K * (be * be - ga * ga), 0.0)) / a;
+            dq = cmul(num, cinv(sum));
+        }
+        if (no <= DEGENERATE_REL * (scale_o > 0.0 ? scale_o : 1.0) || ne <= DEGENERATE_REL * eo) {
+            sp_fields(m, io, ie, qo, K, eta_o);
+            m.q[ie] = qo;
+            dq = vec2(0.0);
+        } else {
+            m.E[3 * io] = Eo0 / no;
+            m.E[3 * io + 1] = Eo1 / no;
+            m.E[3 * io + 2] = Eo2 / no;
+            m.E[3 * ie] = Ee0 / ne;
+            m.E[3 * ie + 1] = Ee1 / ne;
+            m.E[3 * ie + 2] = Ee2 / ne;
+        }
+        if (dir == 0)
+            m.dq_down = dq;
+        else
+            m.dq_up = dq;
+    }
+    return m;
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* Interfaces: continuity of E_x, E_z, H_x, H_z as a 4x4 complex system (docs/PHYSICS.md §2)   */
+/* ------------------------------------------------------------------------------------------ */
+/* Each 2x2 matrix is [incident mode][outgoing mode] at index 2 i + j. */
+struct Iface {
+    vec2 rd[4], td[4], ru[4], tu[4];
+};
+
+/* (E_x, E_z, H_x, H_z) with H = k x E, k = (0, q, -K). */
+void tangential(Modes m, int i, float K, out vec2 f[4])
+{
+    vec2 q = m.q[i], Ex = m.E[3 * i], Ey = m.E[3 * i + 1], Ez = m.E[3 * i + 2];
+    f[0] = Ex;
+    f[1] = Ez;
+    f[2] = cmul(q, Ez) + K * Ey;
+    f[3] = -cmul(q, Ex);
+}
+
+/* Gaussian elimination with partial pivoting, A X = B for four right-hand sides (row-major). */
+bool solve4(inout vec2 A[16], inout vec2 B[16])
+{
+    float scale = 0.0;
+    for (int i = 0; i < 16; i++) scale = max(scale, cl1(A[i]));
+    vec2 invd[4];
+    for (int c = 0; c < 4; c++) {
+        int p = c;
+        float best = cl1(A[5 * c]);
+        for (int r = c + 1; r < 4; r++) {
+            float v = cl1(A[4 * r + c]);
+            if (v > best) {
+                best = v;
+                p = r;
+            }
+        }
+        if (!(best > 1e-7 * scale)) return false;
+        if (p != c) {
+            for (int j = 0; j < 4; j++) {
+                vec2 t = A[4 * c + j];
+                A[4 * c + j] = A[4 * p + j];
+                A[4 * p + j] = t;
+                t = B[4 * c + j];
+                B[4 * c + j] = B[4 * p + j];
+                B[4 * p + j] = t;
+            }
+        }
+        vec2 inv = cinv(A[5 * c]);
+        invd[c] = inv;
+        for (int r = c + 1; r < 4; r++) {
+            vec2 f = cmul(A[4 * r + c], inv);
+            for (int j = c; j < 4; j++) A[4 * r + j] -= cmul(f, A[4 * c + j]);
+            for (int j = 0; j < 4; j++) B[4 * r + j] -= cmul(f, B[4 * c + j]);
+        }
+    }
+    for (int c = 3; c >= 0; c--) {
+        for (int j = 0; j < 4; j++) {
+            vec2 s = B[4 * c + j];
+            for (int k = c + 1; k < 4; k++) s -= cmul(A[4 * c + k], B[4 * k + j]);
+            B[4 * c + j] = cmul(s, invd[c]);
+        }
+    }
+    return true;
+}
+
+bool interface_from_modes(Modes up, Modes lo, float K, out Iface o)
+{
+    vec2 A[16], B[16], f[4];
+    for (int j = 0; j < 2; j++) {
+        tangential(up, 2 + j, K, f);
+        for (int r = 0; r < 4; r++) A[4 * r + j] = f[r];
+        tangential(lo, j, K, f);
+        for (int r = 0; r < 4; r++) A[4 * r + 2 + j] = -f[r];
+    }
+    for (int i = 0; i < 2; i++) {
+        tangential(up, i, K, f); /* incident from above */
+        for (int r = 0; r < 4; r++) B[4 * r + i] = -f[r];
+        tangential(lo, 2 + i, K, f); /* incident from below */
+        for (int r = 0; r < 4; r++) B[4 * r + 2 + i] = f[r];
+    }
+    bool ok = solve4(A, B);
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++) {
+            o.rd[2 * i + j] = B[4 * j + i];
+            o.td[2 * i + j] = B[4 * (2 + j) + i];
+            o.tu[2 * i + j] = B[4 * j + 2 + i];
+            o.ru[2 * i + j] = B[4 * (2 + j) + 2 + i];
+        }
+    return ok;
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* Slab (paper §4): interfaces and the optical paths of the four leg types                     */
+/* ------------------------------------------------------------------------------------------ */
+struct SlabState {
+    Iface top, bot;
+    vec2 od[2], ou[2]; /* optical path of a down / up leg, [o, e], nm (complex when evanescent) */
+    float dd, du;      /* Re(od[e] - od[o]), Re(ou[e] - ou[o]) without cancellation */
+};
+
+/* axis: unit optic axis in the paper frame of the ray; sin_theta of the incidence angle. */
+bool slab_prepare(float eta_o, float eta_e, vec3 axis, float d_nm, float eta_i, float sin_theta, out SlabState st)
+{
+    float K = eta_i * sin_theta; /* eq. 1 */
+    Modes amb = isotropic_modes(eta_i, K);
+    Modes sl = uniaxial_modes(eta_o, eta_e, axis, K);
+    bool ok = interface_from_modes(amb, sl, K, st.top);
+    ok = interface_from_modes(sl, amb, K, st.bot) && ok;
+    /* Each leg gains k0 (-q_down) d or k0 q_up d (docs/PHYSICS.md §3). */
+    st.od[0] = -sl.q[0] * d_nm;
+    st.od[1] = -sl.q[1] * d_nm;
+    st.ou[0] = sl.q[2] * d_nm;
+    st.ou[1] = sl.q[3] * d_nm;
+    st.dd = -sl.dq_down.x * d_nm;
+    st.du = sl.dq_up.x * d_nm;
+    return ok;
+}
+
+/* The same slab lit from its other face (biref_slab_state_flip): relabel, do not solve again. */
+SlabState slab_flip(SlabState s)
+{
+    SlabState o;
+    o.top.rd = s.bot.ru;
+    o.top.td = s.bot.tu;
+    o.top.ru = s.bot.rd;
+    o.top.tu = s.bot.td;
+    o.bot.rd = s.top.ru;
+    o.bot.td = s.top.tu;
+    o.bot.ru = s.top.rd;
+    o.bot.tu = s.top.td;
+    o.od = s.ou;
+    o.ou = s.od;
+    o.dd = s.du;
+    o.du = s.dd;
+    return o;
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* Analytic spectral integration (paper §5, eqs. 19-26 with m = 1)                             */
+/* ------------------------------------------------------------------------------------------ */
+/* Polarisation is general: incident coherency matrix C (real symmetric, (C00, C01, C11)) in the
+ * incident wave's (s, p) basis and analyzer P (real, [in][out] = (P00, P01, P10, P11)) in the
+ * outgoing wave's basis. For the paper's model C = diag(s, p), P = diag(mask) and every term
+ * below equals the C library's biref_analytic_terms mixed by biref_spectrum_mix: the pair
+ * coefficients factor into an entry part Ein (paths share their first leg's input) and an exit
+ * part Xout (docs/GPU.md). */
+
+/* Ein[2a + b] = sum_ij C_ij t[i][b] conj(t[j][a]) */
+void entry_matrix(vec3 C, vec2 t[4], out vec2 Ein[4])
+{
+    for (int a = 0; a < 2; a++)
+        for (int b = 0; b < 2; b++)
+            Ein[2 * a + b] = C.x * cmulc(t[a], t[b]) + C.y * (cmulc(t[2 + a], t[b]) + cmulc(t[a], t[2 + b])) +
+                             C.z * cmulc(t[2 + a], t[2 + b]);
+}
+
+/* TP = t P; Xout[2a + b] = sum_o TP[b][o] conj(TP[a][o]) */
+void exit_matrix(vec2 t[4], vec4 P, out vec2 TP[4], out vec2 Xout[4])
+{
+    for (int x = 0; x < 2; x++) {
+        TP[2 * x] = t[2 * x] * P.x + t[2 * x + 1] * P.z;
+        TP[2 * x + 1] = t[2 * x] * P.y + t[2 * x + 1] * P.w;
+    }
+    for (int a = 0; a < 2; a++)
+        for (int b = 0; b < 2; b++) Xout[2 * a + b] = cmulc(TP[2 * a], TP[2 * b]) + cmulc(TP[2 * a + 1], TP[2 * b + 1]);
+}
+
+/* Energies of all paths arriving at a reflection point (eqs. 20-21): w (I - Dbar)^{-1} per band,
+ * Dbar[m][m2] = sum_n |Rin[m][n]|^2 e_mid[n] |Rout[n][m2]|^2 e_end[m2]. */
+void path_energies(vec3 w0[2], vec2 Rin[4], vec3 e_mid[2], vec2 Rout[4], vec3 e_end[2], out vec3 W[2])
+{
+    vec3 D[4];
+    for (int m = 0; m < 2; m++)
+        for (int m2 = 0; m2 < 2; m2++)
+            D[2 * m + m2] = (cabs2(Rin[2 * m]) * e_mid[0] * cabs2(Rout[m2]) +
+                             cabs2(Rin[2 * m + 1]) * e_mid[1] * cabs2(Rout[2 + m2])) * e_end[m2];
+    vec3 a = 1.0 - D[0], b = -D[1], c = -D[2], d = 1.0 - D[3];
+    vec3 det = a * d - b * c;
+    W[0] = (w0[0] * d - w0[1] * c) / det;
+    W[1] = (-w0[0] * b + w0[1] * a) / det;
+}
+
+/* Transmission: S(|e J P|^2) for light entering through top and leaving through bot. */
+vec3 analytic_transmission(SlabState st, vec3 C, vec4 P)
+{
+    vec2 Ein[4], TP[4], Xout[4];
+    entry_matrix(C, st.top.td, Ein);
+    exit_matrix(st.bot.td, P, TP, Xout);
+    vec3 ed[2], eu[2], w0[2], W[2];
+    for (int m = 0; m < 2; m++) {
+        ed[m] = leg_energy(st.od[m]);
+        eu[m] = leg_energy(st.ou[m]);
+        w0[m] = Ein[3 * m].x * ed[m];
+    }
+    path_energies(w0, st.bot.rd, eu, st.top.ru, ed, W);
+    vec3 E = W[0] * Xout[0].x + W[1] * Xout[3].x;
+    vec3 H = vec3(0.0);
+    /* H0 (eq. 24): the ordinary and the extraordinary order-0 path. */
+    PhaseInt h0 = phase_eval(st.dd, st.od[1].y + st.od[0].y);
+    add_re(H, vec3(1.0), cmul(Ein[1], Xout[1]), h0);
+    /* Descendants (eq. 23, m = 1): one more round trip (bottom into y, up, top into x2). */
+    for (int y = 0; y < 2; y++)
+        for (int x2 = 0; x2 < 2; x2++) {
+            vec2 trip = st.ou[y] + st.od[x2];
+            PhaseInt p = phase_eval(trip.x, trip.y);
+            for (int x = 0; x < 2; x++)
+                add_re(H, W[x], cmul(cmul(st.bot.rd[2 * x + y], st.top.ru[2 * y + x2]), Xout[2 * x + x2]), p);
+        }
+    return E + 2.0 * H; /* eqs. 25-26 */
+}
+
+/* Reflection: the direct reflection, the four order-1 paths (down x, up y) and descendants. */
+vec3 analytic_reflection(SlabState st, vec3 C, vec4 P)
+{
+    vec2 Ein[4], UP[4], Xout[4], RP[4], dummy[4];
+    entry_matrix(C, st.top.td, Ein);
+    exit_matrix(st.top.tu, P, UP, Xout);
+    exit_matrix(st.top.rd, P, RP, dummy);
+    vec3 ed[2], eu[2], u0[2], U[2];
+    for (int m = 0; m < 2; m++) {
+        ed[m] = leg_energy(st.od[m]);
+        eu[m] = leg_energy(st.ou[m]);
+    }
+    for (int y = 0; y < 2; y++)
+        u0[y] = (Ein[0].x * ed[0] * cabs2(st.bot.rd[y]) + Ein[3].x * ed[1] * cabs2(st.bot.rd[2 + y])) * eu[y];
+    path_energies(u0, st.top.ru, ed, st.bot.rd, eu, U);
+    /* Direct reflection energy sum_ij C_ij sum_o RP[i][o] conj(RP[j][o]). */
+    float e0 = C.x * (cabs2(RP[0]) + cabs2(RP[1])) + C.z * (cabs2(RP[2]) + cabs2(RP[3])) +
+               2.0 * C.y * (cmulc(RP[2], RP[0]).x + cmulc(RP[3], RP[1]).x);
+    vec3 E = vec3(e0) + U[0] * Xout[0].x + U[1] * Xout[3].x;
+    vec3 H = vec3(0.0);
+    /* Q[2j + y] = sum_o UP[y][o] conj(RP[j][o]) */
+    vec2 Q[4];
+    for (int j = 0; j < 2; j++)
+        for (int y = 0; y < 2; y++) Q[2 * j + y] = cmulc(RP[2 * j], UP[2 * y]) + cmulc(RP[2 * j + 1], UP[2 * y + 1]);
+    PhaseInt p1[4];
+    for (int a = 0; a < 4; a++) {
+        int x = a / 2, y = a - 2 * x;
+        vec2 opl = st.od[x] + st.ou[y];
+        p1[a] = phase_eval(opl.x, opl.y);
+        /* direct x order-1: sum_ij C_ij t01[i][x] r12[x][y] Q[j][y] */
+        vec2 ti0 = st.top.td[x], ti1 = st.top.td[2 + x];
+        vec2 c = C.x * cmul(ti0, Q[y]) + C.y * (cmul(ti0, Q[2 + y]) + cmul(ti1, Q[y])) + C.z * cmul(ti1, Q[2 + y]);
+        add_re(H, vec3(1.0), cmul(st.bot.rd[2 * x + y], c), p1[a]);
+    }
+    for (int a = 0; a < 4; a++)
+        for (int b = a + 1; b < 4; b++) {
+            int xa = a / 2, ya = a - 2 * xa, xb = b / 2, yb = b - 2 * xb;
+            float re = float(xb - xa) * st.dd + float(yb - ya) * st.du;
+            float im = st.od[xb].y + st.od[xa].y + st.ou[yb].y + st.ou[ya].y;
+            PhaseInt p = phase_eval(re, im);
+            vec2 c = cmul(cmulc(st.bot.rd[2 * xa + ya], st.bot.rd[2 * xb + yb]), cmul(Ein[2 * xa + xb], Xout[2 * ya + yb]));
+            add_re(H, vec3(1.0), c, p);
+        }
+    /* Descendants: a path arriving at the top in up mode y, one more round trip (x', y'). */
+    for (int y = 0; y < 2; y++)
+        for (int a = 0; a < 4; a++) {
+            int x = a / 2, y2 = a - 2 * x;
+            add_re(H, U[y], cmul(cmul(st.top.ru[2 * y + x], st.bot.rd[2 * x + y2]), Xout[2 * y + y2]), p1[a]);
+        }
+    return E + 2.0 * H;
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* Entry point for other renderers (world space)                                               */
+/* ------------------------------------------------------------------------------------------ */
+/* Transmitted and reflected band integrals (CIE XYZ relative to white E) of a thin uniaxial slab
+ * at one hit point, for the paper's light model or world-fixed polarizers:
+ *   view:    unit direction from the eye to the hit point
+ *   normal:  unit slab normal (either side)
+ *   axis:    unit optic axis in world space
+ *   eta:     (eta_o, eta_e, thickness in nm), eta_i the surrounding index
+ *   pol:     x: 0 = s/p fractions (pol_w), 1 = linear polarizer along pol_dir (world space)
+ *   filter:  x: 0 = s/p mask (mask), 1 = linear analyzer along filter_dir (world space)
+ * T is the colour of light arriving from behind along view, R of light arriving along the
+ * mirror direction. Returns false when an interface solve failed (grazing breakdown). */
+struct BirefLight {
+    float pol_linear, filter_linear;
+    vec2 pol_w, mask;
+    vec3 pol_dir, filter_dir;
+};
+
+/* Coherency matrix (C00, C01, C11) of the light in the basis (s, p) of a wave. */
+vec3 light_coherency(BirefLight L, vec3 s, vec3 p)
+{
+    if (L.pol_linear > 0.5) {
+        vec2 e = vec2(dot(L.pol_dir, s), dot(L.pol_dir, p));
+        return vec3(e.x * e.x, e.x * e.y, e.y * e.y);
+    }
+    return vec3(L.pol_w.x, 0.0, L.pol_w.y);
+}
+
+/* Analyzer (P00, P01, P10, P11) in the basis (s, p) of the outgoing wave: P = a_t (a_t / |a_t|)^T. */
+vec4 analyzer(BirefLight L, vec3 s, vec3 p)
+{
+    if (L.filter_linear > 0.5) {
+        vec2 a = vec2(dot(L.filter_dir, s), dot(L.filter_dir, p));
+        float l = length(a);
+        vec2 u = l > 0.0 ? a / l : vec2(0.0);
+        return vec4(a.x * u.x, a.x * u.y, a.y * u.x, a.y * u.y);
+    }
+    return vec4(L.mask.x, 0.0, 0.0, L.mask.y);
+}
+
+/* sum_ijk C_ij P_ik P_jk: the light passed unchanged through the analyzer. */
+float passthrough(vec3 C, vec4 P)
+{
+    return C.x * (P.x * P.x + P.y * P.y) + 2.0 * C.y * (P.x * P.z + P.y * P.w) + C.z * (P.z * P.z + P.w * P.w);
+}
+
+bool biref_shade_slab(vec3 view, vec3 normal, vec3 tangent, vec3 axis, vec3 eta, float eta_i, BirefLight L,
+                      out vec3 T, out vec3 R)
+{
+    float dn = dot(view, normal);
+    float cos_t = min(1.0, abs(dn));
+    /* theta <= 90 deg - 1e-7 rad, as the C renderer clamps grazing rays */
+    float sin_t = min(sqrt(max(0.0, 1.0 - cos_t * cos_t)), 1.0 - 5e-15);
+    /* Paper frame of this ray (docs/SCENES.md): transmission y = normal away from the camera,
+     * z = tangential part of the view ray, x = y x z; the reflection frame has x_R = -x_T. */
+    vec3 yT = dn < 0.0 ? -normal : normal;
+    vec3 z = view - dn * normal;
+    float zl = length(z);
+    z = zl < 1e-9 ? tangent : z / zl;
+    vec3 xT = cross(yT, z), xR = -xT;
+    vec3 mirror = view - 2.0 * dn * normal;
+    vec3 k_view = -view, k_refl_in = -mirror;
+    vec3 A = vec3(dot(axis, xT), dot(axis, yT), dot(axis, z));
+    SlabState stT;
+    bool ok = slab_prepare(eta.x, eta.y, A, eta.z, eta_i, sin_t, stT);
+    SlabState stR = slab_flip(stT);
+    /* s = x of each frame for both waves, p = k x s. */
+    vec3 CT = light_coherency(L, xT, cross(k_view, xT));
+    vec4 PT = analyzer(L, xT, cross(k_view, xT));
+    vec3 CR = light_coherency(L, xR, cross(k_refl_in, xR));
+    vec4 PR = analyzer(L, xR, cross(k_view, xR));
+    T = analytic_transmission(stT, CT, PT);
+    R = analytic_reflection(stR, CR, PR);
+    bool finite = !(any(isnan(T)) || any(isinf(T)) || any(isnan(R)) || any(isinf(R)));
+    if (!ok || !finite) {
+        /* A perfect mirror seen through the filter, as the C renderer's fallback. */
+        T = vec3(0.0);
+        R = vec3(passthrough(CR, PR));
+        return false;
+    }
+    return true;
+}
+
+#ifdef BIREF_SCENE
+/* ------------------------------------------------------------------------------------------ */
+/* The scene ray caster of `biref render` (docs/SCENES.md)                                     */
+/* ------------------------------------------------------------------------------------------ */
+uniform vec2 u_resolution;
+uniform vec3 u_cam_origin, u_cam_forward, u_cam_right, u_cam_up;
+uniform vec2 u_cam_tan_half; /* horizontal, vertical */
+uniform float u_exposure;
+uniform float u_eta_medium;
+
+uniform float u_n_slabs;
+uniform vec3 u_slab_center[BIREF_MAX_SLABS];
+uniform vec3 u_slab_normal[BIREF_MAX_SLABS];
+uniform vec3 u_slab_tangent[BIREF_MAX_SLABS];
+uniform vec3 u_slab_bitangent[BIREF_MAX_SLABS];
+uniform vec2 u_slab_half[BIREF_MAX_SLABS];
+uniform vec3 u_slab_axis[BIREF_MAX_SLABS];   /* world, unit */
+uniform vec3 u_slab_optics[BIREF_MAX_SLABS]; /* eta_o, eta_e, thickness nm */
+
+uniform float u_n_panels;
+uniform vec3 u_panel_center[BIREF_MAX_PANELS];
+uniform vec3 u_panel_normal[BIREF_MAX_PANELS];
+uniform vec3 u_panel_tangent[BIREF_MAX_PANELS];
+uniform vec3 u_panel_bitangent[BIREF_MAX_PANELS];
+uniform vec2 u_panel_half[BIREF_MAX_PANELS];
+uniform vec3 u_panel_radiance[BIREF_MAX_PANELS]; /* XYZ */
+
+uniform float u_env_checker;
+uniform vec3 u_env_up, u_env_e1, u_env_e2;
+uniform vec3 u_env_zenith, u_env_horizon, u_env_ground, u_env_check_a, u_env_check_b; /* XYZ */
+uniform float u_env_check_size;
+
+uniform vec4 u_pol;    /* linear?, s fraction, p fraction, filter linear? */
+uniform vec2 u_mask;   /* s/p analyzer mask */
+uniform vec3 u_pol_dir, u_filter_dir;
+uniform vec3 u_rgb_from_xyz[3]; /* rows of the XYZ (white E) -> linear sRGB matrix */
+
+const float RAY_EPS = 1e-6;
+
+vec3 env_radiance(vec3 d)
+{
+    float el = dot(d, u_env_up);
+    if (el >= 0.0) return mix(u_env_horizon, u_env_zenith, sqrt(min(el, 1.0)));
+    float g = min(1.0, -el * 8.0);
+    vec3 ground = u_env_ground;
+    if (u_env_checker > 0.5 && g > 1e-3) {
+        float s = 1.0 / (-el * u_env_check_size);
+        float u = floor(dot(d, u_env_e1) * s), w = floor(dot(d, u_env_e2) * s);
+        ground = abs(mod(u + w, 2.0)) >= 1.0 ? u_env_check_b : u_env_check_a;
+    }
+    return mix(u_env_horizon, ground, g);
+}
+
+vec3 radiance(vec3 from, vec3 dir)
+{
+    float best = 1e30;
+    int hit = -1;
+    int n = int(u_n_panels + 0.5);
+    for (int i = 0; i < BIREF_MAX_PANELS; i++) {
+        if (i >= n) break;
+        float dn = dot(dir, u_panel_normal[i]);
+        if (abs(dn) < 1e-12) continue;
+        float t = dot(u_panel_center[i] - from, u_panel_normal[i]) / dn;
+        if (!(t > RAY_EPS) || t >= best) continue;
+        vec3 q = from + t * dir - u_panel_center[i];
+        if (abs(dot(q, u_panel_tangent[i])) <= u_panel_half[i].x && abs(dot(q, u_panel_bitangent[i])) <= u_panel_half[i].y) {
+            best = t;
+            hit = i;
+        }
+    }
+    vec3 L = env_radiance(dir);
+    for (int i = 0; i < BIREF_MAX_PANELS; i++)
+        if (i == hit) L = u_panel_radiance[i];
+    return L;
+}
+
+/* Returns XYZ (exposure applied); flag: 0 background, 1 slab, 2 slab with the fallback. */
+vec3 shade_pixel(vec3 dir, out float flag)
+{
+    BirefLight L;
+    L.pol_linear = u_pol.x;
+    L.pol_w = u_pol.yz;
+    L.filter_linear = u_pol.w;
+    L.mask = u_mask;
+    L.pol_dir = u_pol_dir;
+    L.filter_dir = u_filter_dir;
+    vec3 o = u_cam_origin;
+    float best = 1e30;
+    int hit = -1;
+    int n = int(u_n_slabs + 0.5);
+    for (int i = 0; i < BIREF_MAX_SLABS; i++) {
+        if (i >= n) break;
+        float dn = dot(dir, u_slab_normal[i]);
+        if (abs(dn) < 1e-12) continue;
+        float t = dot(u_slab_center[i] - o, u_slab_normal[i]) / dn;
+        if (!(t > RAY_EPS) || t >= best) continue;
+        vec3 q = o + t * dir - u_slab_center[i];
+        if (abs(dot(q, u_slab_tangent[i])) <= u_slab_half[i].x && abs(dot(q, u_slab_bitangent[i])) <= u_slab_half[i].y) {
+            best = t;
+            hit = i;
+        }
+    }
+    vec3 k_view = -dir;
+    if (hit < 0) {
+        /* Background: the polarizers in the plane of the view ray and the first slab's normal. */
+        vec3 nrm = u_slab_normal[0];
+        vec3 s = cross(k_view, nrm);
+        float sl = length(s);
+        if (sl < 1e-6) {
+            vec3 t = u_slab_tangent[0] - dot(u_slab_tangent[0], k_view) * k_view;
+            s = normalize(t);
+        } else {
+            s /= sl;
+        }
+        vec3 p = cross(k_view, s);
+        flag = 0.0;
+        return radiance(o, dir) * passthrough(light_coherency(L, s, p), analyzer(L, s, p));
+    }
+    vec3 nrm = vec3(0.0), tan_ = vec3(0.0), ax = vec3(0.0), eta = vec3(0.0);
+    for (int i = 0; i < BIREF_MAX_SLABS; i++)
+        if (i == hit) {
+            nrm = u_slab_normal[i];
+            tan_ = u_slab_tangent[i];
+            ax = u_slab_axis[i];
+            eta = u_slab_optics[i];
+        }
+    vec3 hp = o + best * dir;
+    vec3 T, R;
+    bool ok = biref_shade_slab(dir, nrm, tan_, ax, eta, u_eta_medium, L, T, R);
+    flag = ok ? 1.0 : 2.0;
+    vec3 mirror = dir - 2.0 * dot(dir, nrm) * nrm;
+    return T * radiance(hp, dir) + R * radiance(hp, mirror);
+}
+
+float srgb_encode(float v)
+{
+    float a = abs(v);
+    float e = a <= 0.0031306684425006340 ? 12.92 * a : 1.055 * pow(a, 1.0 / 2.4) - 0.055;
+    return v < 0.0 ? -e : e;
+}
+
+out vec4 frag;
+void main()
+{
+    float x = floor(gl_FragCoord.x), y = u_resolution.y - 1.0 - floor(gl_FragCoord.y); /* y = 0 at the top */
+    float sx = (2.0 * (x + 0.5) / u_resolution.x - 1.0) * u_cam_tan_half.x;
+    float sy = (1.0 - 2.0 * (y + 0.5) / u_resolution.y) * u_cam_tan_half.y;
+    vec3 dir = normalize(u_cam_forward + sx * u_cam_right + sy * u_cam_up);
+    float flag;
+    vec3 xyz = shade_pixel(dir, flag) * u_exposure;
+    if (any(isnan(xyz)) || any(isinf(xyz))) xyz = vec3(0.0);
+#ifdef BIREF_OUTPUT_SRGB
+    vec3 rgb = vec3(dot(u_rgb_from_xyz[0], xyz), dot(u_rgb_from_xyz[1], xyz), dot(u_rgb_from_xyz[2], xyz));
+    frag = vec4(clamp(vec3(srgb_encode(rgb.x), srgb_encode(rgb.y), srgb_encode(rgb.z)), 0.0, 1.0), 1.0);
+#else
+    frag = vec4(xyz, flag);
+#endif
+}
+#endif /* BIREF_SCENE */
+#endif /* BIREF_VERTEX */

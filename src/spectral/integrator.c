@@ -1,0 +1,194 @@
+/* The spectral integrator (integrator.h): options checked and the worker picked at creation;
+ * the workers wrap the method entry points of analytic.c, numeric.c and expansion.c. */
+#include <complex.h>
+#include <math.h>
+#include <stdlib.h>
+
+#include "biref/integrator.h"
+#include "spectral/phase_prefilter.h"
+#include "spectral/spectral_internal.h"
+
+/* One side (BIREF_TRANSMISSION or BIREF_REFLECTION) of one state under one light. */
+typedef biref_status (*side_worker)(const biref_integrator *it, const biref_slab_state *st, const biref_opl_footprint *fp,
+                                    int which, const biref_light *l, double xyz[3], int *order_used);
+
+/* A packet of states: the place for vectorised or GPU workers (scalar_batch loops). */
+typedef biref_status (*batch_worker)(const biref_integrator *it, const biref_slab_state *states, size_t n,
+                                     biref_sides sides, const biref_light *lights, size_t light_stride,
+                                     biref_integration *out, biref_status *status);
+
+struct biref_integrator {
+    const biref_spectral *sp;
+    biref_method method;
+    biref_expansion_opts xopts;
+    biref_numeric_plan *plan; /* numeric methods */
+    side_worker side;
+    batch_worker batch;
+};
+
+void biref_integrator_options_default(biref_integrator_options *o)
+{
+    o->method = BIREF_METHOD_ANALYTIC;
+    o->samples = 64;
+    biref_expansion_opts_default(&o->expansion);
+}
+
+/* The analytic method per side: eq. 25, S = E + 2H, for the one side asked (half the work of
+ * biref_spectrum_analytic), mixed for the paper's light. */
+static biref_status side_analytic(const biref_integrator *it, const biref_slab_state *st,
+                                  const biref_opl_footprint *fp, int which,
+                                  const biref_light *l, double xyz[3], int *order_used)
+{
+    double E[2][2][3], H[2][2][3], X[2][2][3];
+    biref_analytic_terms_footprint(it->sp, st, fp, which, E, H);
+    for (int i = 0; i < 2; i++)
+        for (int o = 0; o < 2; o++)
+            for (int j = 0; j < 3; j++) X[i][o][j] = E[i][o][j] + 2.0 * H[i][o][j];
+    biref_spectrum_mix(X, l->w_in, l->mask, xyz);
+    return BIREF_OK;
+}
+
+static biref_status side_numeric(const biref_integrator *it, const biref_slab_state *st,
+                                  const biref_opl_footprint *fp, int which,
+                                 const biref_light *l, double xyz[3], int *order_used)
+{
+    biref_spectrum_numeric_polarized(it->plan, st, which, (const double complex(*)[2])l->C,
+                                     l->has_analyzer ? (const double complex(*)[2])l->P : NULL, xyz);
+    return BIREF_OK;
+}
+
+static biref_status side_expansion(const biref_integrator *it, const biref_slab_state *st,
+                                  const biref_opl_footprint *fp, int which,
+                                   const biref_light *l, double xyz[3], int *order_used)
+{
+    biref_status s = biref_expansion_polarized_footprint(it->sp, st, fp, which, (const double complex(*)[2])l->C,
+                                                         l->has_analyzer ? (const double complex(*)[2])l->P : NULL,
+                                                         &it->xopts, xyz, order_used);
+    return s;
+}
+
+static biref_status scalar_batch(const biref_integrator *it, const biref_slab_state *states, size_t n,
+                                 biref_sides sides, const biref_light *lights, size_t light_stride,
+                                 biref_integration *out, biref_status *status);
+
+static biref_status check_options(const biref_integrator_options *o)
+{
+    switch (o->method) {
+    case BIREF_METHOD_ANALYTIC:
+    case BIREF_METHOD_GROUND_TRUTH: return BIREF_OK;
+    case BIREF_METHOD_NUMERIC:
+        return o->samples >= 1 && o->samples <= BIREF_NUMERIC_MAX_SAMPLES ? BIREF_OK : BIREF_ERR_INVALID;
+    case BIREF_METHOD_EXPANSION: {
+        const biref_expansion_opts *x = &o->expansion;
+        if (x->order > BIREF_EXPANSION_MAX_ORDER || x->order < -1) return BIREF_ERR_INVALID;
+        if (x->order < 0 && !(x->tolerance > 0.0 && x->tolerance < 1.0)) return BIREF_ERR_INVALID;
+        return BIREF_OK;
+    }
+    }
+    return BIREF_ERR_INVALID;
+}
+
+biref_status biref_integrator_create(const biref_spectral *sp, const biref_integrator_options *o,
+                                     biref_integrator **out)
+{
+    if (!out) return BIREF_ERR_INVALID;
+    *out = NULL;
+    if (!sp || !o) return BIREF_ERR_INVALID;
+    biref_status s = check_options(o);
+    if (s != BIREF_OK) return s;
+    biref_integrator *it = calloc(1, sizeof *it);
+    if (!it) return BIREF_ERR_NOMEM;
+    it->sp = sp;
+    it->method = o->method;
+    it->xopts = o->expansion;
+    it->batch = scalar_batch;
+    switch (o->method) {
+    case BIREF_METHOD_ANALYTIC: it->side = side_analytic; break;
+    case BIREF_METHOD_EXPANSION: it->side = side_expansion; break;
+    default:
+        it->side = side_numeric;
+        s = biref_numeric_plan_create(
+            sp, o->method == BIREF_METHOD_GROUND_TRUTH ? BIREF_GROUND_TRUTH_SAMPLES : o->samples, &it->plan);
+        if (s != BIREF_OK) {
+            free(it);
+            return s;
+        }
+    }
+    *out = it;
+    return BIREF_OK;
+}
+
+void biref_integrator_destroy(biref_integrator *it)
+{
+    if (!it) return;
+    biref_numeric_plan_destroy(it->plan);
+    free(it);
+}
+
+biref_method biref_integrator_method(const biref_integrator *it) { return it->method; }
+
+int biref_integrator_samples(const biref_integrator *it) { return it->plan ? biref_numeric_plan_samples(it->plan) : 0; }
+
+static int finite3(const double v[3]) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
+
+biref_status biref_integrate(const biref_integrator *it, const biref_slab_state *st, biref_sides sides,
+                             const biref_light *light, biref_integration *out)
+{
+    return biref_integrate_footprint(it, st, NULL, sides, light, out);
+}
+
+biref_status biref_integrate_footprint(const biref_integrator *it, const biref_slab_state *st,
+                                       const biref_opl_footprint *fp, biref_sides sides, const biref_light *light,
+                                       biref_integration *out)
+{
+    out->order_used[0] = out->order_used[1] = -1;
+    if (!(sides & BIREF_SIDE_BOTH) || (sides & ~BIREF_SIDE_BOTH)) return BIREF_ERR_INVALID;
+    if (it->method == BIREF_METHOD_ANALYTIC && !light->sp_model) return BIREF_ERR_INVALID;
+    if (it->plan && light->sp_model && sides == BIREF_SIDE_BOTH) {
+        /* Both sides of the paper's light: one pass over the wavelengths gives all four pairs of
+         * both, cheaper than two polarized passes (one Jones evaluation per wavelength). */
+        biref_spectrum x;
+        biref_spectrum_numeric(it->plan, st, &x);
+        biref_spectrum_mix(x.T, light->w_in, light->mask, out->T);
+        biref_spectrum_mix(x.R, light->w_in, light->mask, out->R);
+        return finite3(out->T) && finite3(out->R) ? BIREF_OK : BIREF_ERR_ILLCOND;
+    }
+    for (int w = 0; w < 2; w++) {
+        if (!(sides & (w ? BIREF_SIDE_REFLECTION : BIREF_SIDE_TRANSMISSION))) continue;
+        double *xyz = w ? out->R : out->T;
+        biref_status s = it->side(it, st, fp, w ? BIREF_REFLECTION : BIREF_TRANSMISSION, light, xyz, &out->order_used[w]);
+        if (s != BIREF_OK) return s;
+        if (!finite3(xyz)) return BIREF_ERR_ILLCOND;
+    }
+    return BIREF_OK;
+}
+
+static biref_status scalar_batch(const biref_integrator *it, const biref_slab_state *states, size_t n,
+                                 biref_sides sides, const biref_light *lights, size_t light_stride,
+                                 biref_integration *out, biref_status *status)
+{
+    biref_status first = BIREF_OK;
+    for (size_t i = 0; i < n; i++) {
+        biref_status s = biref_integrate(it, &states[i], sides, &lights[i * light_stride], &out[i]);
+        if (status) status[i] = s;
+        if (s != BIREF_OK && first == BIREF_OK) first = s;
+    }
+    return first;
+}
+
+biref_status biref_integrate_spectrum(const biref_integrator *it, const biref_slab_state *st, biref_spectrum *out)
+{
+    switch (it->method) {
+    case BIREF_METHOD_ANALYTIC: biref_spectrum_analytic(it->sp, st, out); return BIREF_OK;
+    case BIREF_METHOD_EXPANSION: return biref_spectrum_expansion(it->sp, st, &it->xopts, out);
+    default: biref_spectrum_numeric(it->plan, st, out); return BIREF_OK;
+    }
+}
+
+biref_status biref_integrate_batch(const biref_integrator *it, const biref_slab_state *states, size_t n,
+                                   biref_sides sides, const biref_light *lights, size_t light_stride,
+                                   biref_integration *out, biref_status *status)
+{
+    if (light_stride > 1) return BIREF_ERR_INVALID;
+    return it->batch(it, states, n, sides, lights, light_stride, out, status);
+}

@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# The OpenGL back-end (EGL, headless; Mesa's llvmpipe where there is no GPU) against the CPU
+# renderer on every example scene at 320x180: mean dE00 <= 0.3 and 99th percentile <= 1. A
+# machine without EGL / OpenGL 4.3 fails this test: the back-end is part of the product.
+set -u
+. "$(dirname "$0")/lib.sh"
+
+# json_num KEY FILE: a number from cJSON's formatted output.
+json_num() { sed -n "s/^[[:space:]]*\"$1\":[[:space:]]*\\([-0-9.eE+]*\\),*\$/\\1/p" "$2" | head -1; }
+
+expect_error "unknown backend" render examples/fig9a.json -o "$tmpdir/x.png" --backend vulkan
+expect_error "gl with a numeric method" render examples/fig9a.json -o "$tmpdir/x.png" --backend gl --method numeric
+expect_error "bench unknown backend" bench --backend vulkan
+# No usable EGL vendor: one line, exit 1, no output file.
+rc=0
+__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json "$BIREF" render examples/fig9a.json -o "$tmpdir/none.png" \
+  --backend gl --width 32 --height 18 >"$tmpdir/out" 2>"$tmpdir/err" || rc=$?
+if [ "$rc" -ne 1 ] || [ "$(wc -l <"$tmpdir/err")" -ne 1 ] || [ -e "$tmpdir/none.png" ] ||
+   ! grep -q "^biref render: error: --backend gl: " "$tmpdir/err"; then
+  echo "FAIL (no EGL vendor): rc=$rc"; sed 's/^/  stderr: /' "$tmpdir/err"; fails=$((fails + 1))
+fi
+
+for scene in examples/*.json; do
+  name=$(basename "$scene" .json)
+  method=()
+  # World-fixed polarizers: the CPU's analytic method refuses them, the expansion is its reference.
+  grep -q '"linear"' "$scene" && method=(--method expansion)
+  expect_ok "$name cpu" render "$scene" -o "$tmpdir/$name-cpu.png" --width 320 --height 180 --quiet "${method[@]}"
+  expect_ok "$name gl" render "$scene" -o "$tmpdir/$name-gl.png" --width 320 --height 180 --backend gl --json
+  cp "$tmpdir/out" "$tmpdir/render.json"
+  [ "$(json_num fallback_evaluations "$tmpdir/render.json")" = 0 ] ||
+    { echo "FAIL ($name): GL fallback evaluations"; fails=$((fails + 1)); }
+  expect_ok "$name diff" diff "$tmpdir/$name-gl.png" "$tmpdir/$name-cpu.png" --json
+  mean=$(json_num mean "$tmpdir/out")
+  p99=$(json_num p99 "$tmpdir/out")
+  echo "$name: gl vs cpu dE00 mean $mean, p99 $p99"
+  awk -v m="$mean" -v p="$p99" 'BEGIN { exit !(m != "" && p != "" && m <= 0.3 && p <= 1.0) }' ||
+    { echo "FAIL ($name): mean $mean > 0.3 or p99 $p99 > 1"; fails=$((fails + 1)); }
+done
+
+# A test that cannot fail is a defect: a wrong scene (another thickness) must exceed the bounds.
+sed -e 's/"thickness_mm": 1.15/"thickness_mm": 1.25/' examples/fig9c.json >"$tmpdir/other.json"
+expect_ok "other gl" render "$tmpdir/other.json" -o "$tmpdir/other-gl.png" --width 320 --height 180 --backend gl
+expect_ok "other diff" diff "$tmpdir/other-gl.png" "$tmpdir/fig9c-cpu.png" --json
+mean=$(json_num mean "$tmpdir/out")
+awk -v m="$mean" 'BEGIN { exit !(m > 0.3) }' || { echo "FAIL (the comparison does not see a 9% thicker slab: $mean)"; fails=$((fails + 1)); }
+
+expect_ok "bench gl" bench --scene examples/fig9c.json --width 64 --height 36 --methods analytic --backend gl --frames 2 --json
+expect_grep "bench gl backend" '"backend":[[:space:]]*"gl"'
+expect_grep "bench gl gpu time" '"gpu_ms_per_frame":'
+finish

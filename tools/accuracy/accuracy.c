@@ -1,0 +1,239 @@
+/* The accuracy study from options to reports: materials, integration plans, the cost measurement,
+ * the sweep, then the outputs. */
+#include <errno.h>
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "cli_common.h"
+#include "json_out.h"
+#include "study.h"
+
+void acc_options_default(acc_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->materials = "fig9";
+    o->theta_max_deg = 89.0;
+    o->theta_step_deg = 1.0;
+    o->check_step_deg = 5.0;
+    o->nphi = 16;
+    o->samples_ref = DEFAULT_REFERENCE_SAMPLES;
+    o->samples_check = -1; /* 4x the reference unless given */
+    o->cost_opts = (acc_cost_opts){0.3, 5, 0, 0};
+    biref_spectral_config_default(&o->scfg);
+}
+
+int acc_options_finish(acc_options *o)
+{
+    if (o->cost_only && (o->csv_path || o->plot_dir))
+        return cli_error(ACC_CMD, "--cost-only: no accuracy sweep, so no --csv or --plot-dir"), -1;
+    if ((o->cost_opts.fixed_iters > 0) && !o->cost)
+        return cli_error(ACC_CMD, "--cost-iterations: needs --cost or --cost-only"), -1;
+    if (o->plot_dir) {
+        struct stat sb;
+        if (stat(o->plot_dir, &sb) != 0 || !S_ISDIR(sb.st_mode))
+            return cli_error(ACC_CMD, "--plot-dir: '%s' is not a directory", o->plot_dir), -1;
+    }
+    /* The check defaults to 4x the reference: a midpoint rule that has converged changes by far
+     * less than the error it had when the samples are quadrupled. */
+    if (o->samples_check < 0) o->samples_check = o->samples_ref <= MAX_SAMPLES / 4 ? 4 * o->samples_ref : 0;
+    o->ntheta = (int)floor(o->theta_max_deg / o->theta_step_deg + 1e-9) + 1;
+    if (o->ntheta > 100000)
+        return cli_error(ACC_CMD, "--theta-step-deg: %g gives more than 100000 angles", o->theta_step_deg), -1;
+    o->kcheck = (int)lround(o->check_step_deg / o->theta_step_deg);
+    if (o->kcheck < 1) o->kcheck = 1;
+    return 0;
+}
+
+static FILE *open_out(const char *opt, const char *path)
+{
+    FILE *f = fopen(path, "w");
+    if (!f) cli_error(ACC_CMD, "%s: cannot write '%s': %s", opt, path, strerror(errno));
+    return f;
+}
+
+static int close_out(const char *opt, const char *path, FILE *f)
+{
+    int bad = ferror(f);
+    if (fclose(f) != 0 || bad) return cli_error(ACC_CMD, "%s: error writing '%s'", opt, path), -1;
+    return 0;
+}
+
+/* Materials: the bases, then one variant per (base, Δε). Returns a CLI exit code. */
+static int make_materials(acc_run *run, const acc_options *o)
+{
+    acc_material base[MAX_BASE];
+    if (!strcmp(o->materials, "fig9"))
+        run->nbase = acc_builtin_fig9(base);
+    else if (acc_load_materials(o->materials, base, MAX_BASE, &run->nbase))
+        return CLI_EXIT_USAGE;
+    run->nmat = run->nbase * (1 + o->nsweep);
+    run->mat = calloc((size_t)run->nmat, sizeof *run->mat);
+    run->res = calloc((size_t)run->nmat, sizeof *run->res);
+    if (!run->mat || !run->res) return cli_error(ACC_CMD, "out of memory"), CLI_EXIT_FAIL;
+    for (int i = 0; i < run->nbase; i++) {
+        run->mat[i] = base[i];
+        biref_axis_normalize(base[i].slab.axis, run->mat[i].slab.axis);
+        run->mat[i].delta_eps = base[i].slab.eta_e * base[i].slab.eta_e - base[i].slab.eta_o * base[i].slab.eta_o;
+    }
+    for (int i = 0; i < run->nbase; i++)
+        for (int k = 0; k < o->nsweep; k++) {
+            acc_material *m = &run->mat[run->nbase + i * o->nsweep + k];
+            *m = run->mat[i];
+            m->base = i;
+            m->delta_eps = o->sweep[k];
+            double e2 = m->slab.eta_o * m->slab.eta_o + o->sweep[k];
+            if (!(e2 > 0.0))
+                return cli_error(ACC_CMD, "--sweep-delta-eps: %g makes eps_e <= 0 for material %s", o->sweep[k],
+                                 m->name),
+                       CLI_EXIT_USAGE;
+            m->slab.eta_e = sqrt(e2);
+            snprintf(m->name, sizeof m->name, "%.40s:de%+.3g", base[i].name, o->sweep[k]);
+        }
+    return CLI_EXIT_OK;
+}
+
+enum { NINTEGRATORS = NCMP + 2 }; /* the compared methods, the reference, the check */
+
+/* The spectral context and an integrator per method. Returns a CLI exit code. */
+static int make_plans(const acc_run *run, const acc_options *o, biref_spectral **sp,
+                      biref_integrator *its[NINTEGRATORS], acc_plans *pl)
+{
+    biref_status s = biref_spectral_create(&run->scfg, sp);
+    if (s == BIREF_ERR_INVALID)
+        return cli_error(ACC_CMD, "--range-nm: the colour-matching functions are zero on %g-%g nm",
+                         run->scfg.lambda_min_nm, run->scfg.lambda_max_nm),
+               CLI_EXIT_USAGE;
+    if (s != BIREF_OK) return cli_error(ACC_CMD, "spectral context: %s", biref_status_string(s)), CLI_EXIT_FAIL;
+    biref_integrator_options io[NINTEGRATORS];
+    for (int k = 0; k < NINTEGRATORS; k++) {
+        biref_integrator_options_default(&io[k]);
+        io[k].method = BIREF_METHOD_NUMERIC;
+        io[k].samples = 0; /* none */
+    }
+    io[M_ANALYTIC].method = BIREF_METHOD_ANALYTIC;
+    io[M_EXPANSION].method = BIREF_METHOD_EXPANSION;
+    for (int k = 0; k < NNUM; k++) io[M_N3 + k].samples = ACC_NUMERIC_N[k];
+    io[M_GT].method = BIREF_METHOD_GROUND_TRUTH;
+    io[NCMP].samples = o->cost_only ? 0 : run->samples_ref;
+    io[NCMP + 1].samples = o->cost_only ? 0 : run->samples_check;
+    for (int k = 0; k < NINTEGRATORS; k++) {
+        if (io[k].method == BIREF_METHOD_NUMERIC && io[k].samples <= 0) continue;
+        s = biref_integrator_create(*sp, &io[k], &its[k]);
+        if (s != BIREF_OK)
+            return cli_error(ACC_CMD, "numeric plan (%d samples): %s",
+                             io[k].method == BIREF_METHOD_GROUND_TRUTH ? BIREF_GROUND_TRUTH_SAMPLES : io[k].samples,
+                             biref_status_string(s)),
+                   CLI_EXIT_FAIL;
+    }
+    memset(pl, 0, sizeof *pl);
+    pl->sp = *sp;
+    for (int k = 0; k < NCMP; k++) pl->method[k] = its[k];
+    pl->ref = its[NCMP];
+    pl->check = its[NCMP + 1];
+    return CLI_EXIT_OK;
+}
+
+/* The cost measurement, then the sweep over every material. Returns 0 or -1. */
+static int compute(acc_run *run, const acc_options *o, const acc_plans *pl)
+{
+    const int tty = isatty(STDERR_FILENO);
+    run->cost_opts.progress = tty || o->progress;
+    /* Cost first: on one thread, before any OpenMP team exists whose idle workers could spin on the
+     * other core while it is timed. */
+    if (o->cost && acc_measure_cost(run, pl)) return -1;
+
+    if (o->threads > 0) omp_set_num_threads((int)o->threads);
+    run->threads = omp_get_max_threads();
+    acc_progress pg = {tty || o->progress, tty, 0,
+                       (long)run->nmat * ((long)run->ntheta + AXIS_SETS * AXIS_NPSI) * run->nphi, omp_get_wtime(),
+                       0.0};
+    if (!o->cost_only) {
+        for (int i = 0; i < run->nmat; i++)
+            if (acc_run_material(run, pl, i, &pg)) return -1;
+        run->sweep_done = 1;
+    }
+    run->total_s = omp_get_wtime() - pg.t0 + run->cost_s;
+    if (pg.on)
+        fprintf(stderr, "%sbiref accuracy: done in %.1f s on %d threads%30s\n", tty ? "\r" : "", run->total_s,
+                run->threads, "");
+    return 0;
+}
+
+/* The figures, the CSV, the Markdown file and stdout; closes (and clears) the open files. */
+static int write_outputs(const acc_run *run, const acc_options *o, FILE **csv, FILE **md)
+{
+    if (o->plot_dir && acc_write_plots(run, o->plot_dir)) return -1;
+    if (*csv) {
+        acc_write_csv(*csv, run);
+        int e = close_out("--csv", o->csv_path, *csv);
+        *csv = NULL;
+        if (e) return -1;
+    }
+    if (*md) {
+        fprintf(*md, "## biref accuracy\n\n");
+        acc_write_markdown(*md, run);
+        int e = close_out("--markdown", o->md_path, *md);
+        *md = NULL;
+        if (e) return -1;
+    }
+    if (o->json) {
+        cJSON *root = acc_build_json(run);
+        if (!root) return cli_error(ACC_CMD, "out of memory"), -1;
+        if (json_print_and_free(root)) return -1;
+    } else {
+        acc_write_markdown(stdout, run);
+    }
+    return 0;
+}
+
+int acc_study(const acc_options *o)
+{
+    acc_run run;
+    memset(&run, 0, sizeof run);
+    run.theta_max_deg = o->theta_max_deg;
+    run.theta_step_deg = o->theta_step_deg;
+    run.check_step_deg = o->check_step_deg;
+    run.ntheta = o->ntheta;
+    run.kcheck = o->kcheck;
+    run.nphi = o->nphi;
+    run.samples_ref = o->samples_ref;
+    run.samples_check = o->samples_check;
+    run.scfg = o->scfg;
+    run.materials_arg = o->materials;
+    run.cost_opts = o->cost_opts;
+
+    biref_spectral *sp = NULL;
+    biref_integrator *its[NINTEGRATORS] = {0};
+    FILE *csv = NULL, *md = NULL;
+    acc_plans pl;
+    int rc = make_materials(&run, o);
+    if (rc != CLI_EXIT_OK) goto done;
+    rc = CLI_EXIT_USAGE;
+    /* Open the outputs first: a bad path should fail now, not after minutes of computation. */
+    if (o->csv_path && !(csv = open_out("--csv", o->csv_path))) goto done;
+    if (o->md_path && !(md = open_out("--markdown", o->md_path))) goto done;
+    rc = make_plans(&run, o, &sp, its, &pl);
+    if (rc != CLI_EXIT_OK) goto done;
+    rc = CLI_EXIT_FAIL;
+    if (compute(&run, o, &pl) || write_outputs(&run, o, &csv, &md)) goto done;
+    rc = CLI_EXIT_OK;
+
+done:
+    if (csv) fclose(csv), remove(o->csv_path);
+    if (md) fclose(md), remove(o->md_path);
+    for (int k = 0; k < NINTEGRATORS; k++) biref_integrator_destroy(its[k]);
+    biref_spectral_destroy(sp);
+    if (run.res)
+        for (int i = 0; i < run.nmat; i++) {
+            free(run.res[i].theta);
+            free(run.res[i].phi0);
+        }
+    free(run.mat);
+    free(run.res);
+    return rc;
+}

@@ -700,17 +700,10 @@ void biref_expansion_tail(const biref_spectral *sp, const biref_slab_state *st, 
     tail_energy(&tm, 0, order, out);
 }
 
-biref_status biref_expansion_series_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
-                                              const double complex C[2][2], const double complex P[2][2],
-                                              const biref_expansion_opts *opts, double xyz[3], int *order_used)
-{
-    return biref_expansion_polarized_footprint(sp, st, NULL, which, C, P, opts, xyz, order_used);
-}
-
-biref_status biref_expansion_polarized_footprint(const biref_spectral *sp, const biref_slab_state *st,
-                                                 const biref_opl_footprint *fp, int which, const double complex C[2][2],
-                                                 const double complex P[2][2], const biref_expansion_opts *opts,
-                                                 double xyz[3], int *order_used)
+/* The series functions with the phase integrals averaged over the footprint fp (NULL: points). */
+static biref_status series_polarized(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                                     int which, const double complex C[2][2], const double complex P[2][2],
+                                     const biref_expansion_opts *opts, double xyz[3], int *order_used)
 {
     if (!sp || !st || !C || !xyz || (which != BIREF_TRANSMISSION && which != BIREF_REFLECTION)) return BIREF_ERR_INVALID;
     biref_expansion_opts def;
@@ -725,8 +718,15 @@ biref_status biref_expansion_polarized_footprint(const biref_spectral *sp, const
     return BIREF_OK;
 }
 
-biref_status biref_expansion_series(const biref_spectral *sp, const biref_slab_state *st,
-                                    const biref_expansion_opts *opts, biref_spectrum *out)
+biref_status biref_expansion_series_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
+                                              const double complex C[2][2], const double complex P[2][2],
+                                              const biref_expansion_opts *opts, double xyz[3], int *order_used)
+{
+    return series_polarized(sp, st, NULL, which, C, P, opts, xyz, order_used);
+}
+
+static biref_status series(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                           const biref_expansion_opts *opts, biref_spectrum *out)
 {
     if (!sp || !st || !out) return BIREF_ERR_INVALID;
     biref_expansion_opts def;
@@ -744,7 +744,7 @@ biref_status biref_expansion_series(const biref_spectral *sp, const biref_slab_s
     /* Transmission and reflection share the path differences, hence the band integrals, and
      * the amplitude recursion. */
     phase_cache pc;
-    cache_init(&pc, sp, st, NULL);
+    cache_init(&pc, sp, st, fp);
     tail_model tm[2];
     expansion_orders ord[2];
     for (int which = 0; which < 2; which++) {
@@ -764,6 +764,15 @@ biref_status biref_expansion_series(const biref_spectral *sp, const biref_slab_s
     return BIREF_OK;
 }
 
+biref_status biref_expansion_series(const biref_spectral *sp, const biref_slab_state *st,
+                                    const biref_expansion_opts *opts, biref_spectrum *out)
+{
+    return series(sp, st, NULL, opts, out);
+}
+
+static biref_status expansion_pairs(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                                    const biref_expansion_opts *opts, biref_spectrum *out);
+
 static int is_diagonal(const double complex M[2][2]) { return M[0][1] == 0.0 && M[1][0] == 0.0; }
 
 /* Thin slabs and evanescent legs that couple the faces: the path series converges too slowly
@@ -774,9 +783,10 @@ static int is_diagonal(const double complex M[2][2]) { return M[0][1] == 0.0 && 
  * diagonal) the result is that of biref_spectrum_expansion, kept physical with both directions
  * (biref_physical_limit); for other polarizers it is kept >= 0 by moving it towards the
  * incoherent energy of the paths. */
-biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
-                                                const double complex C[2][2], const double complex P[2][2],
-                                                const biref_expansion_opts *opts, double xyz[3], int *order_used)
+static biref_status expansion_polarized(const biref_spectral *sp, const biref_slab_state *st,
+                                       const biref_opl_footprint *fp, int which, const double complex C[2][2],
+                                       const double complex P[2][2], const biref_expansion_opts *opts, double xyz[3],
+                                       int *order_used)
 {
     if (!sp || !st || !C || !xyz || (which != BIREF_TRANSMISSION && which != BIREF_REFLECTION)) return BIREF_ERR_INVALID;
     const biref_numeric_plan *coherent = biref_coherent_plan(sp, st);
@@ -788,9 +798,9 @@ biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const 
     }
     if (is_diagonal(C) && (!P || is_diagonal(P))) {
         biref_spectrum x;
-        biref_status s = biref_spectrum_expansion(sp, st, opts, &x);
+        biref_status s = expansion_pairs(sp, st, fp, opts, &x);
         if (s != BIREF_OK) return s;
-        if (order_used) s = biref_expansion_series_polarized(sp, st, which, C, P, opts, xyz, order_used);
+        if (order_used) s = series_polarized(sp, st, fp, which, C, P, opts, xyz, order_used);
         if (s != BIREF_OK) return s;
         const double(*X)[2][3] = which == BIREF_REFLECTION ? x.R : x.T;
         for (int j = 0; j < 3; j++) {
@@ -800,7 +810,7 @@ biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const 
         }
         return BIREF_OK;
     }
-    biref_status s = biref_expansion_series_polarized(sp, st, which, C, P, opts, xyz, order_used);
+    biref_status s = series_polarized(sp, st, fp, which, C, P, opts, xyz, order_used);
     if (s != BIREF_OK) return s;
     if (xyz[0] < 0.0 || xyz[1] < 0.0 || xyz[2] < 0.0) {
         quad_form f = {C, P};
@@ -828,13 +838,13 @@ biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const 
     return BIREF_OK;
 }
 
-biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab_state *st,
-                                      const biref_expansion_opts *opts, biref_spectrum *out)
+static biref_status expansion_pairs(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                                    const biref_expansion_opts *opts, biref_spectrum *out)
 {
     if (!sp || !st || !out) return BIREF_ERR_INVALID;
     const biref_numeric_plan *coherent = biref_coherent_plan(sp, st);
     if (!coherent) {
-        biref_status s = biref_expansion_series(sp, st, opts, out);
+        biref_status s = series(sp, st, fp, opts, out);
         if (s != BIREF_OK) return s;
         /* The truncated series and its incoherent tail can leave [0, 1] by up to ~1e-2 where
          * internal reflections are strong (grazing incidence, high indices). */
@@ -849,5 +859,35 @@ biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab
     }
     if (opts && !(opts->tolerance > 0.0) && opts->order < 0) return BIREF_ERR_INVALID;
     biref_spectrum_numeric(coherent, st, out);
+    return BIREF_OK;
+}
+
+/* A result that is not finite is an error (BIREF_ERR_ILLCOND), never an output. */
+static int finite3(const double v[3]) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
+
+biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
+                                                const double complex C[2][2], const double complex P[2][2],
+                                                const biref_expansion_opts *opts, double xyz[3], int *order_used)
+{
+    return biref_expansion_polarized_footprint(sp, st, NULL, which, C, P, opts, xyz, order_used);
+}
+
+biref_status biref_expansion_polarized_footprint(const biref_spectral *sp, const biref_slab_state *st,
+                                                 const biref_opl_footprint *fp, int which, const double complex C[2][2],
+                                                 const double complex P[2][2], const biref_expansion_opts *opts,
+                                                 double xyz[3], int *order_used)
+{
+    biref_status s = expansion_polarized(sp, st, fp, which, C, P, opts, xyz, order_used);
+    return s == BIREF_OK && !finite3(xyz) ? BIREF_ERR_ILLCOND : s;
+}
+
+biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab_state *st,
+                                      const biref_expansion_opts *opts, biref_spectrum *out)
+{
+    biref_status s = expansion_pairs(sp, st, NULL, opts, out);
+    if (s != BIREF_OK) return s;
+    for (int i = 0; i < 2; i++)
+        for (int o = 0; o < 2; o++)
+            if (!finite3(out->T[i][o]) || !finite3(out->R[i][o])) return BIREF_ERR_ILLCOND;
     return BIREF_OK;
 }

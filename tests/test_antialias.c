@@ -148,9 +148,11 @@ static void test_options(void)
 
 int main(void)
 {
+    /* BIREF_TEST_QUICK (the sanitizer run): smaller images and references. */
+    const int quick = getenv("BIREF_TEST_QUICK") != NULL;
     test_box_table();
     test_options();
-    test_aliasing_scene(BIREF_METHOD_ANALYTIC, 64, 36, 12);
-    test_aliasing_scene(BIREF_METHOD_EXPANSION, 32, 18, 8);
+    test_aliasing_scene(BIREF_METHOD_ANALYTIC, quick ? 48 : 64, quick ? 27 : 36, quick ? 8 : 12);
+    test_aliasing_scene(BIREF_METHOD_EXPANSION, quick ? 24 : 32, quick ? 14 : 18, quick ? 6 : 8);
     return test_report("test_antialias");
 }

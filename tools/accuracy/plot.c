@@ -268,10 +268,10 @@ int acc_plot_vs_theta(const char *path, const acc_plot_theta_data *d)
     char guide[64];
     snprintf(guide, sizeof guide, "θ = %g°", d->mark_deg);
     if (d->mark_deg > 0.0 && d->mark_deg < th1) leg[nl++] = (legend_entry){guide, FIG_GREY, 3, 1.0, NULL};
-    leg[nl++] = (legend_entry){"ΔE00 = 1 (horizontal)", FIG_GREY, 3, 1.0, NULL};
+    leg[nl++] = (legend_entry){"ΔE00 = 1", FIG_GREY, 3, 1.0, NULL};
     bottom_legend(nl, leg);
     /* Say what the log axis cannot show. */
-    plvpor(0.03, 0.97, 0.062, 0.09);
+    plvpor(0.03, 0.97, 0.965, 0.995); /* above the panel titles */
     plwind(0.0, 1.0, 0.0, 1.0);
     plschr(0.0, SMALL_SCALE);
     plcol0(FIG_BLACK);

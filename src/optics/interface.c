@@ -35,7 +35,10 @@ static biref_status solve4(double complex A[4][4], double complex B[4][4])
 {
     double scale = 0.0;
     for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++) scale = fmax(scale, l1(A[i][j]));
+        for (int j = 0; j < 4; j++) {
+            double v = l1(A[i][j]);
+            scale = v > scale ? v : scale; /* fmax without the libm call: entries are finite */
+        }
     double complex inv_diag[4];
     for (int c = 0; c < 4; c++) {
         int p = c;

@@ -39,6 +39,11 @@ struct biref_numeric_plan {
 void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
                           double H[2][2][3]);
 
+/* sum_{i,o} w_in[i] out_mask[o] (E + 2 H)[i][o] of biref_analytic_terms, the same quantity with
+ * the weights folded in before the band integrals (src/spectral/analytic_mixed.c). */
+void biref_analytic_mixed(const biref_spectral *sp, const biref_slab_state *st, int which, const double w_in[2],
+                          const double out_mask[2], double xyz[3]);
+
 /* Incoherent energy of all paths of order > order for coherency C and analyzer P (NULL = none):
  * the closed-form tail of the path-group expansion (src/spectral/expansion.c). */
 void biref_expansion_tail(const biref_spectral *sp, const biref_slab_state *st, int which, const double complex C[2][2],

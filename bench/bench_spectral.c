@@ -1,20 +1,21 @@
 /* bench_spectral — cost of one shading sample: the band-normalised XYZ integrals of |J|^2 for one
  * angle of incidence, all four input/output polarisation pairs, transmission and reflection
- * (one biref_spectrum), by each spectral integration method of the paper's table 1:
+ * (one biref_spectrum, biref_integrate_spectrum of an integrator of each method), by each
+ * spectral integration method of the paper's table 1:
  *
- *   analytic      biref_spectrum_analytic (eq. 26, m = 1; five/fourteen table look-ups)
- *   numeric-N     biref_spectrum_numeric with N = 3, 8, 32, 128, 512 midpoint samples
- *   ground-truth  biref_spectrum_numeric with N = 16384 (paper §6)
+ *   analytic      eq. 26, m = 1; five/fourteen table look-ups
+ *   numeric-N     N = 3, 8, 32, 128, 512 midpoint samples
+ *   ground-truth  numeric with N = 16384 (paper §6)
  *
  * Every method is timed twice: with biref_slab_prepare in the loop (a renderer's shading sample:
  * a new angle per pixel, so modes and Fresnel coefficients are recomputed) and on states prepared
  * beforehand (the integration alone). Ratios are taken within one run of one process, so they are
  * comparable; the paper's comparison is analytic vs numeric-8 (1.09 ms vs 1.73 ms per frame).
  *
- *   expansion     biref_spectrum_expansion (beyond the paper, issue #5; default options)
+ *   expansion     the exact integral of the path-group expansion (beyond the paper; default options)
  *
  * Inputs: the paper's fig. 9 materials at random angles 0-70 deg (the analytic method's stated
- * domain; --theta-max-deg 85 for issue #5's range, where the expansion's cost rises) and random
+ * domain; --theta-max-deg 85 for the expansion's acceptance range, where the expansion's cost rises) and random
  * rotations of the optic axis about the surface normal y, generated before timing from a fixed
  * seed. Single thread; measures, never asserts.
  *
@@ -50,8 +51,7 @@ typedef struct {
     double *theta;
     biref_slab_state *state;
     const biref_spectral *sp;
-    const biref_numeric_plan *plan; /* for M_NUMERIC */
-    kind what;
+    const biref_integrator *integrator; /* NULL: prepare only */
     int with_prepare;
     long failures;
 } ctx;
@@ -76,8 +76,8 @@ static void make_pool(ctx *c, uint64_t seed, double theta_max_deg)
     }
 }
 
-/* One shading sample per iteration. The method switch is outside the inner call, and its branch
- * is perfectly predicted; the checksum adds one dependent addition per sample. */
+/* One shading sample per iteration: the four s/p pairs of T and R through the method's integrator
+ * (biref_integrate_spectrum); the checksum adds one dependent addition per sample. */
 static double run(void *vctx, long iters)
 {
     ctx *c = vctx;
@@ -93,21 +93,12 @@ static double run(void *vctx, long iters)
             }
             st = &local;
         }
-        biref_spectrum out;
-        switch (c->what) {
-        case M_PREPARE:
+        if (!c->integrator) {
             acc += creal(st->top.t_down[0][0]);
             continue;
-        case M_ANALYTIC:
-            biref_spectrum_analytic(c->sp, st, &out);
-            break;
-        case M_NUMERIC:
-            biref_spectrum_numeric(c->plan, st, &out);
-            break;
-        case M_EXPANSION: /* default adaptive options (tolerance 1e-3) */
-            biref_spectrum_expansion(c->sp, st, NULL, &out);
-            break;
         }
+        biref_spectrum out;
+        (void)biref_integrate_spectrum(c->integrator, st, &out);
         acc += out.T[0][1][1] + out.R[1][0][2];
     }
     return acc;
@@ -124,7 +115,7 @@ static void usage(FILE *f)
             "  --iterations N      fixed samples per run, no calibration (default runs 1; for\n"
             "                      valgrind --tool=callgrind, whose counts do not depend on load)\n"
             "  --seed N            seed of the random angles and axis rotations (default 1)\n"
-            "  --theta-max-deg A   angles uniform in 0-A deg, 0 < A < 90 (default 70; issue #5: 85)\n"
+            "  --theta-max-deg A   angles uniform in 0-A deg, 0 < A < 90 (default 70; 85 for the expansion's range)\n"
             "  --draws N           random slab states cycled through, a power of two <= 65536\n"
             "                      (default 256; more for a steadier mean when the cost varies)\n"
             "  --no-ground-truth   skip the 16384-sample reference (about 10 s)\n"
@@ -309,13 +300,21 @@ int main(int argc, char **argv)
 
     for (int r = 0; r < nrows; r++) {
         if (!rows[r].enabled) continue;
-        biref_numeric_plan *plan = NULL;
-        if (rows[r].what == M_NUMERIC && biref_numeric_plan_create(sp, rows[r].samples, &plan) != BIREF_OK) {
-            fprintf(stderr, "bench_spectral: cannot create a %d-sample plan\n", rows[r].samples);
-            return 1;
+        biref_integrator *integrator = NULL;
+        if (rows[r].what != M_PREPARE) {
+            /* The expansion with its default options (adaptive, tolerance 1e-3). */
+            biref_integrator_options io;
+            biref_integrator_options_default(&io);
+            io.method = rows[r].what == M_ANALYTIC    ? BIREF_METHOD_ANALYTIC
+                        : rows[r].what == M_EXPANSION ? BIREF_METHOD_EXPANSION
+                                                      : BIREF_METHOD_NUMERIC;
+            io.samples = rows[r].samples;
+            if (biref_integrator_create(sp, &io, &integrator) != BIREF_OK) {
+                fprintf(stderr, "bench_spectral: cannot set up %s\n", rows[r].name);
+                return 1;
+            }
         }
-        c->what = rows[r].what;
-        c->plan = plan;
+        c->integrator = integrator;
         /* Fewer repetitions for the 16384-sample reference: one run already takes min_time. */
         int n_runs = rows[r].samples == BIREF_GROUND_TRUTH_SAMPLES && runs > 3 ? 3 : runs;
         c->with_prepare = 1;
@@ -324,7 +323,7 @@ int main(int argc, char **argv)
             c->with_prepare = 0;
             rows[r].without = bench_measure(run, c, min_time, n_runs, fixed_iters);
         }
-        biref_numeric_plan_destroy(plan);
+        biref_integrator_destroy(integrator);
     }
     const double ref = rows[1].with.ns_median, ref_np = rows[1].without.ns_median;
 

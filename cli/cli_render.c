@@ -1,10 +1,6 @@
 #include "cli_render.h"
 
-#include <errno.h>
-#include <stdlib.h>
-#include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
+#include "io/outfile.h"
 
 int cli_load_scene(const char *cmd, const char *path, biref_scene *scene)
 {
@@ -41,32 +37,15 @@ int cli_renderer_create(const char *cmd, const biref_scene *scene, const biref_r
 
 int cli_check_writable(const char *cmd, const char *path)
 {
-    size_t n = strlen(path);
-    char *dir = malloc(n + 2);
-    if (!dir) return cli_error(cmd, "out of memory"), CLI_EXIT_FAIL;
-    memcpy(dir, path, n + 1);
-    char *slash = strrchr(dir, '/');
-    if (!slash)
-        strcpy(dir, ".");
-    else if (slash == dir)
-        dir[1] = '\0';
-    else
-        *slash = '\0';
-    struct stat st;
-    int rc = 0;
-    if (n == 0 || path[n - 1] == '/') {
-        cli_error(cmd, "%s: cannot write: not a file name", path);
-        rc = CLI_EXIT_FAIL;
-    } else if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
-        cli_error(cmd, "%s: cannot write: directory '%s' does not exist", path, dir);
-        rc = CLI_EXIT_FAIL;
-    } else if (access(dir, W_OK | X_OK) != 0) {
-        cli_error(cmd, "%s: cannot write: %s", path, strerror(errno));
-        rc = CLI_EXIT_FAIL;
-    } else if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
-        cli_error(cmd, "%s: cannot write: is a directory", path);
-        rc = CLI_EXIT_FAIL;
-    }
-    free(dir);
-    return rc;
+    char msg[600];
+    if (biref_outfile_check(path, msg, sizeof msg) != BIREF_OK) return cli_error(cmd, "%s", msg), CLI_EXIT_FAIL;
+    return 0;
+}
+
+int cli_check_output(const char *cmd, const char *out, const char *const *inputs, int n_inputs)
+{
+    for (int i = 0; i < n_inputs; i++)
+        if (inputs[i] && biref_outfile_is_file(out, inputs[i]))
+            return cli_error(cmd, "%s: output would overwrite the input file %s", out, inputs[i]), CLI_EXIT_USAGE;
+    return cli_check_writable(cmd, out);
 }

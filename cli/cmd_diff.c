@@ -66,7 +66,9 @@ int cmd_diff(int argc, char **argv)
     if (argc - optind < 2) return cli_error(CMD, "expected two images A.png B.png (see biref diff --help)"), CLI_EXIT_USAGE;
     if (argc - optind > 2) return cli_error(CMD, "unexpected argument '%s'", argv[optind + 2]), CLI_EXIT_USAGE;
     const char *pa = argv[optind], *pb = argv[optind + 1];
-    if (out && cli_check_writable(CMD, out)) return CLI_EXIT_FAIL;
+    const char *inputs[2] = {pa, pb};
+    int rc_out = out ? cli_check_output(CMD, out, inputs, 2) : 0;
+    if (rc_out) return rc_out;
 
     char msg[600];
     int wa, ha, wb, hb;

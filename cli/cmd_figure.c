@@ -16,6 +16,7 @@
 #include "cli_data.h"
 #include "commands.h"
 #include "fig_plot.h"
+#include "io/outfile.h"
 
 static const char *const CMD = "figure";
 
@@ -56,23 +57,48 @@ static void out_path(const fig_ctx *c, const char *name, char *buf, size_t len)
     snprintf(buf, len, "%s/%s", c->dir, name);
 }
 
-static FILE *open_csv(const fig_ctx *c, const char *name, char *path, size_t len)
+/* Output files through io/outfile.h: in place only once complete. */
+static biref_outfile *open_out(const char *path)
 {
-    out_path(c, name, path, len);
-    FILE *f = fopen(path, "w");
-    if (!f) cli_error(CMD, "cannot write %s: %s", path, strerror(errno));
-    return f;
+    char msg[600];
+    biref_outfile *o = biref_outfile_open(path, msg, sizeof msg);
+    if (!o) cli_error(CMD, "%s", msg);
+    return o;
 }
 
-static int close_csv(FILE *f, const char *path)
+static biref_outfile *open_csv(const fig_ctx *c, const char *name, char *path, size_t len)
 {
-    int bad = ferror(f);
-    if (fclose(f) != 0 || bad) return cli_error(CMD, "cannot write %s", path), -1;
+    out_path(c, name, path, len);
+    return open_out(path);
+}
+
+static int close_csv(biref_outfile *o, const char *path)
+{
+    char msg[600];
+    if (biref_outfile_close(o, 1, msg, sizeof msg) != BIREF_OK) return cli_error(CMD, "%s", msg), -1;
     printf("wrote %s\n", path);
     return 0;
 }
 
-static void wrote(const char *path) { printf("wrote %s\n", path); }
+static void discard(biref_outfile *o) { biref_outfile_close(o, 0, NULL, 0); }
+
+static int plot_begin(const char *path, int width, int height, int nx, int ny)
+{
+    if (fig_plot_begin(path, width, height, nx, ny)) return cli_error(CMD, "%s", fig_plot_message()), -1;
+    return 0;
+}
+
+static int plot_end(const char *path)
+{
+    if (fig_plot_end()) return cli_error(CMD, "%s", fig_plot_message()), -1;
+    printf("wrote %s\n", path);
+    return 0;
+}
+
+static cairo_status_t write_stream(void *closure, const unsigned char *data, unsigned int length)
+{
+    return fwrite(data, 1, length, closure) == length ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+}
 
 static double deg2rad(double d) { return d * M_PI / 180.0; }
 
@@ -129,8 +155,9 @@ static int fig5(const fig_ctx *c)
     double *J = malloc(sizeof(double) * (size_t)n * 3 * (size_t)nm);
     if (!th || !J) return free(th), free(J), cli_error(CMD, "out of memory"), CLI_EXIT_FAIL;
     char path[4096];
-    FILE *f = open_csv(c, "fig5.csv", path, sizeof path);
-    if (!f) return free(th), free(J), CLI_EXIT_FAIL;
+    biref_outfile *out = open_csv(c, "fig5.csv", path, sizeof path);
+    if (!out) return free(th), free(J), CLI_EXIT_FAIL;
+    FILE *f = biref_outfile_stream(out);
     fprintf(f, "material,eta_o,eta_e,axis_x,axis_y,axis_z,thickness_nm,lambda_nm,theta_deg,J,J_s,J_p\n");
     for (int m = 0; m < nm; m++) {
         const material *mt = &FIG5_MATERIALS[m];
@@ -154,10 +181,10 @@ static int fig5(const fig_ctx *c)
                     mt->axis[1], mt->axis[2], mt->d_nm, lambda, th[i], o[i], o[n + i], o[2 * n + i]);
         }
     }
-    if (close_csv(f, path)) return free(th), free(J), CLI_EXIT_FAIL;
+    if (close_csv(out, path)) return free(th), free(J), CLI_EXIT_FAIL;
 
     out_path(c, "fig5.png", path, sizeof path);
-    fig_plot_begin(path, 1200, 900, 2, 2);
+    if (plot_begin(path, 1200, 900, 2, 2)) return free(th), free(J), CLI_EXIT_FAIL;
     for (int m = 0; m < nm; m++) {
         const double *o = J + ((size_t)m * 3) * (size_t)n;
         fig_plot_panel(0, 89, 0, 1.0, "θ (degrees)", "magnitude", FIG5_MATERIALS[m].label);
@@ -168,11 +195,9 @@ static int fig5(const fig_ctx *c)
         static const int colors[] = {FIG_BLACK, FIG_BLUE, FIG_RED};
         fig_plot_legend(3, labels, colors, NULL, FIG_LEFT | FIG_BOTTOM);
     }
-    fig_plot_end();
-    wrote(path);
     free(th);
     free(J);
-    return CLI_EXIT_OK;
+    return plot_end(path) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
 }
 
 /* ------------------------------------------------------------------------ */
@@ -227,8 +252,9 @@ static int fig6c(const fig_ctx *c)
         de[i] = biref_delta_e00_xyz(a, g);
     }
     char path[4096];
-    FILE *f = open_csv(c, "fig6c.csv", path, sizeof path);
-    if (!f) return free(buf), CLI_EXIT_FAIL;
+    biref_outfile *out = open_csv(c, "fig6c.csv", path, sizeof path);
+    if (!out) return free(buf), CLI_EXIT_FAIL;
+    FILE *f = biref_outfile_stream(out);
     fprintf(f, "theta_deg,x_analytic,y_analytic,Y_analytic,x_ground_truth,y_ground_truth,Y_ground_truth,dE00\n");
     double xmin = 1, xmax = 0, ymin = 1, ymax = 0, demax = 0;
     for (int i = 0; i < n; i++) {
@@ -242,10 +268,10 @@ static int fig6c(const fig_ctx *c)
         }
         if (isfinite(de[i])) demax = fmax(demax, de[i]);
     }
-    if (close_csv(f, path)) return free(buf), CLI_EXIT_FAIL;
+    if (close_csv(out, path)) return free(buf), CLI_EXIT_FAIL;
 
     out_path(c, "fig6c.png", path, sizeof path);
-    fig_plot_begin(path, 1300, 620, 2, 1);
+    if (plot_begin(path, 1300, 620, 2, 1)) return free(buf), CLI_EXIT_FAIL;
     double pad = 0.05 * fmax(xmax - xmin, ymax - ymin) + 0.01;
     char title[160];
     snprintf(title, sizeof title, "s-polarised in, p out (CIE 1931 xy)\n%s", FIG6C.label);
@@ -268,10 +294,8 @@ static int fig6c(const fig_ctx *c)
     fig_plot_legend(2, labels, colors, widths, FIG_BOTTOM);
     fig_plot_panel(0, 89, 0, fmax(1.0, demax * 1.05), "θ (degrees)", "ΔE00", "analytic vs ground truth");
     fig_plot_line(n, th, de, FIG_RED, 1.5);
-    fig_plot_end();
-    wrote(path);
     free(buf);
-    return CLI_EXIT_OK;
+    return plot_end(path) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
 }
 
 /* ------------------------------------------------------------------------ */
@@ -336,8 +360,9 @@ static int fig7(const fig_ctx *c)
     if (failed) return free(de), free(th), cli_error(CMD, "fig7: %ld slab evaluations failed", failed), CLI_EXIT_FAIL;
 
     char path[4096];
-    FILE *f = open_csv(c, "fig7.csv", path, sizeof path);
-    if (!f) return free(de), free(th), CLI_EXIT_FAIL;
+    biref_outfile *out = open_csv(c, "fig7.csv", path, sizeof path);
+    if (!out) return free(de), free(th), CLI_EXIT_FAIL;
+    FILE *f = biref_outfile_stream(out);
     fprintf(f, "material,eta_o,eta_e,delta_eps,thickness_nm,theta_deg,dE00_unpolarized_phi0,"
                "dE00_unpolarized_phi_avg,dE00_crossed_s_to_p_phi_avg,azimuths\n");
     double rmax[FIG7_ROWS] = {0, 0, 0};
@@ -349,10 +374,10 @@ static int fig7(const fig_ctx *c)
                 de[2 * ncell + k], nphi);
         for (int r = 0; r < FIG7_ROWS; r++) rmax[r] = fmax(rmax[r], de[r * ncell + k]);
     }
-    if (close_csv(f, path)) return free(de), free(th), CLI_EXIT_FAIL;
+    if (close_csv(out, path)) return free(de), free(th), CLI_EXIT_FAIL;
 
     out_path(c, "fig7.png", path, sizeof path);
-    fig_plot_begin(path, 1500, 1200, FIG7_NM, FIG7_ROWS);
+    if (plot_begin(path, 1500, 1200, FIG7_NM, FIG7_ROWS)) return free(de), free(th), CLI_EXIT_FAIL;
     static const int colors[FIG7_ND] = {FIG_BLUE, FIG_CYAN, FIG_GREEN, FIG_ORANGE, FIG_RED, FIG_PURPLE};
     static const char *const labels[FIG7_ND] = {"Δε = -0.3", "Δε = -0.1", "Δε = -0.03",
                                                 "Δε = +0.03", "Δε = +0.1", "Δε = +0.3"};
@@ -371,11 +396,10 @@ static int fig7(const fig_ctx *c)
                 fig_plot_line(nth, th, de + r * ncell + ((size_t)m * FIG7_ND + d) * nth, colors[d], 1.5);
             if (r == 0 && m == 0) fig_plot_legend(FIG7_ND, labels, colors, NULL, FIG_LEFT);
         }
-    fig_plot_end();
-    wrote(path);
+    int rc_plot = plot_end(path);
     free(de);
     free(th);
-    return CLI_EXIT_OK;
+    return rc_plot ? CLI_EXIT_FAIL : CLI_EXIT_OK;
 }
 
 /* ------------------------------------------------------------------------ */
@@ -565,20 +589,26 @@ static int fig9_scene(const fig_ctx *c, const char *scenes, const char *name, FI
     snprintf(file, sizeof file, "fig9_%s.png", name + strlen(name) - 1);
     out_path(c, file, path, sizeof path);
     cairo_surface_flush(out);
-    cairo_status_t cs = cairo_surface_write_to_png(out, path);
+    biref_outfile *png = open_out(path);
+    cairo_status_t cs = png ? cairo_surface_write_to_png_stream(out, write_stream, biref_outfile_stream(png))
+                            : CAIRO_STATUS_WRITE_ERROR;
     cairo_destroy(cr);
     cairo_surface_destroy(out);
     free(xyz), free(rgb), free(de), free(sorted);
-    if (cs != CAIRO_STATUS_SUCCESS) return cli_error(CMD, "cannot write %s: %s", path, cairo_status_to_string(cs)), CLI_EXIT_FAIL;
-    wrote(path);
-    return CLI_EXIT_OK;
+    if (!png) return CLI_EXIT_FAIL;
+    if (cs != CAIRO_STATUS_SUCCESS) {
+        discard(png);
+        return cli_error(CMD, "cannot write %s: %s", path, cairo_status_to_string(cs)), CLI_EXIT_FAIL;
+    }
+    return close_csv(png, path) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
 }
 
 static int fig9(const fig_ctx *c, const char *scenes)
 {
     char path[4096];
-    FILE *f = open_csv(c, "fig9.csv", path, sizeof path);
-    if (!f) return CLI_EXIT_FAIL;
+    biref_outfile *out = open_csv(c, "fig9.csv", path, sizeof path);
+    if (!out) return CLI_EXIT_FAIL;
+    FILE *f = biref_outfile_stream(out);
     fprintf(f, "scene,method,width,height,dE00_mean,dE00_p95,dE00_max,fraction_dE00_gt_1,render_seconds\n");
     static const char *const names[3] = {"fig9a", "fig9b", "fig9c"};
     int done = 0;
@@ -592,11 +622,11 @@ static int fig9(const fig_ctx *c, const char *scenes)
             continue;
         }
         int rc = fig9_scene(c, scenes, names[i], f);
-        if (rc) return fclose(f), rc;
+        if (rc) return discard(out), rc;
         done++;
     }
-    if (!done) return fclose(f), cli_error(CMD, "fig9: no scene found in %s (fig9a/b/c.json)", scenes), CLI_EXIT_USAGE;
-    return close_csv(f, path) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
+    if (!done) return discard(out), cli_error(CMD, "fig9: no scene found in %s (fig9a/b/c.json)", scenes), CLI_EXIT_USAGE;
+    return close_csv(out, path) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
 }
 
 /* ------------------------------------------------------------------------ */
@@ -623,11 +653,13 @@ static int table1(const fig_ctx *c, const char *scenes)
     float *xyz = malloc(sizeof(float) * (size_t)W * H * 3);
     if (!xyz) return cli_error(CMD, "out of memory"), CLI_EXIT_FAIL;
     char path[4096], mdpath[4096];
-    FILE *f = open_csv(c, "table1.csv", path, sizeof path);
-    if (!f) return free(xyz), CLI_EXIT_FAIL;
+    biref_outfile *out = open_csv(c, "table1.csv", path, sizeof path);
+    if (!out) return free(xyz), CLI_EXIT_FAIL;
+    FILE *f = biref_outfile_stream(out);
     out_path(c, "table1.md", mdpath, sizeof mdpath);
-    FILE *md = fopen(mdpath, "w");
-    if (!md) return fclose(f), free(xyz), cli_error(CMD, "cannot write %s: %s", mdpath, strerror(errno)), CLI_EXIT_FAIL;
+    biref_outfile *mdout = open_out(mdpath);
+    if (!mdout) return discard(out), free(xyz), CLI_EXIT_FAIL;
+    FILE *md = biref_outfile_stream(mdout);
     int threads = c->threads > 0 ? c->threads : omp_get_max_threads();
     fprintf(f, "method,samples,rows_rendered,rows_total,measured_seconds,frame_seconds,extrapolated,threads,"
                "paper_frame_seconds\n");
@@ -641,18 +673,18 @@ static int table1(const fig_ctx *c, const char *scenes)
         snprintf(label, sizeof label, "table1 %s", methods[m].name);
         fprintf(stderr, "biref figure: table1: %s\n", methods[m].name);
         double t = render_rows(c, &sc, &methods[m], y0, step, xyz, label);
-        if (t < 0) return fclose(f), fclose(md), free(xyz), CLI_EXIT_FAIL;
+        if (t < 0) return discard(out), discard(mdout), free(xyz), CLI_EXIT_FAIL;
         int rows = (H - y0 + step - 1) / step;
         double per_row = t / rows;
         if (per_row * H <= budget) {
             t = render_rows(c, &sc, &methods[m], 0, 1, xyz, label);
-            if (t < 0) return fclose(f), fclose(md), free(xyz), CLI_EXIT_FAIL;
+            if (t < 0) return discard(out), discard(mdout), free(xyz), CLI_EXIT_FAIL;
             rows = H;
         } else if ((int)(budget / per_row) > rows) {
             step = H / (int)(budget / per_row);
             y0 = step / 2;
             t = render_rows(c, &sc, &methods[m], y0, step, xyz, label);
-            if (t < 0) return fclose(f), fclose(md), free(xyz), CLI_EXIT_FAIL;
+            if (t < 0) return discard(out), discard(mdout), free(xyz), CLI_EXIT_FAIL;
             rows = (H - y0 + step - 1) / step;
         }
         double frame = t * H / rows;
@@ -669,10 +701,8 @@ static int table1(const fig_ctx *c, const char *scenes)
                 extrap ? " (extrapolated)" : "");
     }
     free(xyz);
-    int bad = ferror(md);
-    if (fclose(md) != 0 || bad) return fclose(f), cli_error(CMD, "cannot write %s", mdpath), CLI_EXIT_FAIL;
-    wrote(mdpath);
-    return close_csv(f, path) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
+    if (close_csv(mdout, mdpath)) return discard(out), CLI_EXIT_FAIL;
+    return close_csv(out, path) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
 }
 
 /* ------------------------------------------------------------------------ */

@@ -9,6 +9,7 @@
 #include "cli_render.h"
 #include "commands.h"
 #include "json_out.h"
+#include "photoelastic_ext.h"
 
 static const char *const CMD = "photoelastic";
 
@@ -17,7 +18,8 @@ static const char *const CMD = "photoelastic";
 
 static void help(void)
 {
-    printf("usage: biref photoelastic (--preset disk|hole|beam | --stress-grid FILE) [OPTIONS]\n\n"
+    printf("usage: biref photoelastic (--preset disk|hole|beam | --stress-grid FILE | --stress-nodes FILE) [OPTIONS]\n"
+           "       biref photoelastic demodulate IMAGES... -o DIR --zero-order PX,PY (see its --help)\n\n"
            "A plate under plane stress seen in a polariscope (at normal incidence unless --tilt-deg):\n"
            "isochromatic fringes (and isoclinics in a plane polariscope) from the stress-optic law\n"
            "n1 - n2 = C (s1 - s2).\n"
@@ -60,17 +62,18 @@ static void help(void)
            "  --exposure E         multiply intensities by E (default 1)\n"
            "  --threads T          OpenMP threads (default: all cores); the picture does not depend on T\n"
            "  --profile x0,y0,x1,y1  print intensity, retardation (nm) and fringe order N = h C (s1 - s2) / lambda\n"
-           "                       along a line in mm (white light: N at %.0f nm; tilted: the model's\n"
+           "                       along a line in mm (white light: N at 550 nm; tilted: the model's\n"
            "                       retardation along the oblique path)\n"
            "  --samples N          points on the profile (default 201)\n"
            "  --json               machine-readable output\n"
-           "  -h, --help           this help\n\n"
-           "Exit status: 0 success, 1 runtime failure (e.g. unwritable output), 2 bad usage or input.\n\n"
+           "  -h, --help           this help\n\n");
+    pe_ext_help();
+    printf("Exit status: 0 success, 1 runtime failure (e.g. unwritable output), 2 bad usage or input.\n\n"
            "Examples:\n"
            "  biref photoelastic --preset disk --light mono --lambda-nm 589 -o disk.png\n"
            "  biref photoelastic --preset hole --polariscope plane --polarizer-deg 0 -o hole.png\n"
-           "  biref photoelastic --preset disk --profile 0,-25,0,25 --json\n",
-           WHITE_FRINGE_LAMBDA_NM);
+           "  biref photoelastic --preset disk --profile 0,-25,0,25 --json\n"
+           "  biref photoelastic --stress-nodes part.csv --columns sxx=S11,syy=S22,txy=S12 --map fringe-order -o N.pfm\n");
 }
 
 enum {
@@ -127,7 +130,7 @@ static const geo_opt GEO[] = {
     {OPT_TENSION_DEG, "--tension-deg", 1u << BIREF_PE_HOLE},
 };
 #define N_GEO (sizeof GEO / sizeof GEO[0])
-static const char *const KIND_NAMES[] = {"disk", "hole", "beam", "grid"};
+static const char *const KIND_NAMES[] = {"disk", "hole", "beam", "grid", "nodes"};
 
 /* Scales a monochromatic colour to a displayable tint: band-normalised XYZ of the spectral line,
  * negative linear sRGB clipped (spectral colours lie outside the gamut) and the largest
@@ -197,7 +200,9 @@ int cmd_photoelastic(int argc, char **argv)
                                              {"view-mm", required_argument, 0, OPT_VIEW},
                                              {"tilt-deg", required_argument, 0, OPT_TILT},
                                              {"help", no_argument, 0, 'h'},
+                                             PE_EXT_LONG_OPTIONS,
                                              {0, 0, 0, 0}};
+    if (argc > 1 && !strcmp(argv[1], "demodulate")) return cmd_photoelastic_demodulate(argc - 1, argv + 1);
     int kind = -1, json = 0, tint = 0, have_profile = 0, have_lambda = 0, have_samples = 0;
     const char *grid_path = NULL, *out = NULL, *material_name = "polycarbonate";
     double thickness_mm = NAN, n0 = NAN, c_brew = NAN, eta_i = 1.0, polarizer_deg = 0.0, lambda = 589.0,
@@ -215,6 +220,8 @@ int cmd_photoelastic(int argc, char **argv)
     biref_pe_field_type ft = BIREF_PE_DARK;
     biref_pe_light_kind light = BIREF_PE_WHITE;
 
+    pe_ext ext;
+    pe_ext_init(&ext);
     opterr = 0;
     optind = 1;
     int c;
@@ -346,15 +353,24 @@ int cmd_photoelastic(int argc, char **argv)
                        CLI_EXIT_USAGE;
             have_view = 1;
             break;
-        default: cli_getopt_error(CMD, c, argv); return CLI_EXIT_USAGE;
+        default: {
+            int r = pe_ext_option(&ext, c, optarg);
+            if (r > 0) break;
+            if (r == 0) cli_getopt_error(CMD, c, argv);
+            return CLI_EXIT_USAGE;
+        }
         }
     }
+    if (pe_ext_check(&ext, kind >= 0, light == BIREF_PE_MONO, out != NULL, tilt_deg > 0)) return CLI_EXIT_USAGE;
+    if (ext.nodes_path) kind = BIREF_PE_NODES;
     if (optind < argc) return cli_error(CMD, "unexpected argument '%s'", argv[optind]), CLI_EXIT_USAGE;
-    if (kind < 0) return cli_error(CMD, "missing --preset disk|hole|beam or --stress-grid FILE"), CLI_EXIT_USAGE;
+    if (kind < 0)
+        return cli_error(CMD, "missing --preset disk|hole|beam, --stress-grid FILE or --stress-nodes FILE"), CLI_EXIT_USAGE;
     for (size_t i = 0; i < N_GEO; i++)
         if (geo_given[GEO[i].code - OPT_PRESET] && !(GEO[i].presets & (1u << kind)))
             return cli_error(CMD, "%s does not apply to %s", GEO[i].name,
-                             kind == BIREF_PE_GRID ? "--stress-grid" : KIND_NAMES[kind]),
+                             kind >= BIREF_PE_GRID ? (kind == BIREF_PE_GRID ? "--stress-grid" : "--stress-nodes")
+                                                   : KIND_NAMES[kind]),
                    CLI_EXIT_USAGE;
     if (!out && !have_profile) return cli_error(CMD, "nothing to do: give -o OUT.png and/or --profile"), CLI_EXIT_USAGE;
     if (tint && light != BIREF_PE_MONO) return cli_error(CMD, "--tint needs --light mono"), CLI_EXIT_USAGE;
@@ -399,6 +415,14 @@ int cmd_photoelastic(int argc, char **argv)
         st = biref_pe_field_beam(&field, GEO_OR(OPT_LENGTH, 100.0) * mm, GEO_OR(OPT_DEPTH, 20.0) * mm, h,
                                  GEO_OR(OPT_MOMENT, 2000.0) * 1e-3, msg, sizeof msg);
         break;
+    case BIREF_PE_NODES: {
+        int r = pe_ext_nodes_field(&ext, &field, h);
+        if (r) {
+            pe_ext_free(&ext);
+            return r;
+        }
+        break;
+    }
     default: {
         st = biref_pe_grid_load(grid_path, &grid, msg, sizeof msg);
         if (st != BIREF_OK) {
@@ -435,10 +459,7 @@ int cmd_photoelastic(int argc, char **argv)
     }
     double tint_rgb[3] = {io.tint[0], io.tint[1], io.tint[2]};
     for (int i = 0; i < 3; i++) io.tint[i] *= exposure;
-    if (out && cli_check_writable(CMD, out)) {
-        rc = CLI_EXIT_FAIL;
-        goto done;
-    }
+    if (out && (rc = cli_check_output(CMD, out, &grid_path, 1))) goto done;
     if (light == BIREF_PE_WHITE && biref_spectral_create(NULL, &sp) != BIREF_OK) {
         cli_error(CMD, "cannot create the spectral tables");
         rc = CLI_EXIT_FAIL;
@@ -446,12 +467,17 @@ int cmd_photoelastic(int argc, char **argv)
     }
     if (json) root = cJSON_CreateObject();
     double ms = 0;
-    if (out) {
-        /* Square pixels: the longer side of the frame gets --size pixels. */
-        double fw = field.frame[1] - field.frame[0], fh = field.frame[3] - field.frame[2];
-        fh *= cos(io.tilt); /* the tilted plate is foreshortened along y */
-        io.width = fw >= fh ? (int)size : (int)fmax(1, lround(size * fw / fh));
-        io.height = fw >= fh ? (int)fmax(1, lround(size * fh / fw)) : (int)size;
+    /* Square pixels: the longer side of the frame gets --size pixels. */
+    double fw = field.frame[1] - field.frame[0], fh = field.frame[3] - field.frame[2];
+    fh *= cos(io.tilt); /* the tilted plate is foreshortened along y */
+    io.width = fw >= fh ? (int)size : (int)fmax(1, lround(size * fw / fh));
+    io.height = fw >= fh ? (int)fmax(1, lround(size * fh / fw)) : (int)size;
+    const double lambda_N = light == BIREF_PE_MONO ? lambda : WHITE_FRINGE_LAMBDA_NM;
+    const pe_ext_ctx ectx = {&setup, sp,       &field, &io, out, exposure, lambda_N,
+                             tint_rgb, root, polarizer_deg * M_PI / 180};
+    if (out && pe_ext_owns_output(&ext)) {
+        if ((rc = pe_ext_write(&ext, &ectx))) goto done;
+    } else if (out) {
         size_t npx = (size_t)io.width * io.height;
         xyz = malloc(npx * 3 * sizeof *xyz);
         rgb = malloc(npx * 3);
@@ -470,11 +496,7 @@ int cmd_photoelastic(int argc, char **argv)
         if (light == BIREF_PE_WHITE && exposure != 1.0)
             for (size_t i = 0; i < npx * 3; i++) xyz[i] = (float)(xyz[i] * exposure);
         biref_xyz_image_to_srgb8(xyz, npx, rgb);
-        if (biref_png_write_rgb8(out, io.width, io.height, rgb, msg, sizeof msg) != BIREF_OK) {
-            cli_error(CMD, "%s", msg);
-            rc = CLI_EXIT_FAIL;
-            goto done;
-        }
+        if ((rc = pe_ext_write_png(&ext, &ectx, rgb))) goto done;
         if (root) {
             cJSON_AddStringToObject(root, "output", out);
             cJSON_AddNumberToObject(root, "width", io.width);
@@ -487,7 +509,6 @@ int cmd_photoelastic(int argc, char **argv)
         }
     }
 
-    const double lambda_N = light == BIREF_PE_MONO ? lambda : WHITE_FRINGE_LAMBDA_NM;
     if (root) {
         cJSON_AddStringToObject(root, "specimen", KIND_NAMES[kind]);
         cJSON_AddItemToObject(root, "material", material_json(&setup.material, lambda_N));
@@ -585,5 +606,6 @@ done:
     free(rgb);
     biref_spectral_destroy(sp);
     biref_pe_grid_destroy(grid);
+    pe_ext_free(&ext);
     return rc;
 }

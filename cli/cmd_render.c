@@ -20,7 +20,9 @@ static void help(void)
            "transmitted from behind and reflected from the camera side, integrated over the CIE 1931\n"
            "colour-matching functions (380-700 nm), written as an 8-bit sRGB PNG.\n\n"
            "Options:\n"
-           "  -o, --output FILE    output PNG (required)\n"
+           "  -o, --output FILE    output PNG (required; \"-\" = standard output). Written to a\n"
+           "                       temporary file and renamed into place, or through a symlink,\n"
+           "                       FIFO or device\n"
            "  --method M           analytic (default; the paper's eq. 26), numeric, ground-truth\n"
            "                       (numeric with %d samples) or expansion (exact integral of the\n"
            "                       path-group expansion; any polarizer, docs/PHYSICS.md §5)\n"
@@ -114,6 +116,8 @@ int cmd_render(int argc, char **argv)
     if (optind + 1 < argc) return cli_error(CMD, "unexpected argument '%s'", argv[optind + 1]), CLI_EXIT_USAGE;
     const char *scene_path = argv[optind];
     if (!out) return cli_error(CMD, "missing -o OUT.png"), CLI_EXIT_USAGE;
+    if (json && (strcmp(out, "-") == 0 || (pfm && strcmp(pfm, "-") == 0)))
+        return cli_error(CMD, "--json and an image on standard output ('-') exclude each other"), CLI_EXIT_USAGE;
     if (have_samples && opt.method != BIREF_METHOD_NUMERIC)
         return cli_error(CMD, "--samples only applies to --method numeric"), CLI_EXIT_USAGE;
     if (have_samples) opt.samples = (int)samples;
@@ -129,7 +133,8 @@ int cmd_render(int argc, char **argv)
     if (!rc) rc = cli_scene_resize(CMD, &scene, width, height);
     if (rc) return rc;
     /* Fail on a bad output path before rendering for seconds, not after. */
-    if ((rc = cli_check_writable(CMD, out)) || (pfm && (rc = cli_check_writable(CMD, pfm)))) return rc;
+    const char *inputs[2] = {scene_path, out};
+    if ((rc = cli_check_output(CMD, out, inputs, 1)) || (pfm && (rc = cli_check_output(CMD, pfm, inputs, 2)))) return rc;
     biref_renderer *r = NULL;
     /* The GL back-end handles world-fixed polarizers too (docs/GPU.md): no CPU renderer then. */
     if (!gl && (rc = cli_renderer_create(CMD, &scene, &opt, &r))) return rc;
@@ -203,8 +208,10 @@ int cmd_render(int argc, char **argv)
         if (pfm) cJSON_AddStringToObject(root, "pfm", pfm);
         return json_print_and_free(root) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
     }
-    printf("wrote %s (%dx%d, %s%s", out, W, H, biref_method_name(opt.method), gl ? " on the GPU" : "");
-    if (opt.method == BIREF_METHOD_NUMERIC) printf(" %d samples", samples_used);
-    printf(", %.0f ms)%s%s\n", ms, pfm ? " and " : "", pfm ? pfm : "");
+    /* With the image on standard output ("-o -"), the summary goes to standard error. */
+    FILE *info = strcmp(out, "-") == 0 ? stderr : stdout;
+    fprintf(info, "wrote %s (%dx%d, %s%s", out, W, H, biref_method_name(opt.method), gl ? " on the GPU" : "");
+    if (opt.method == BIREF_METHOD_NUMERIC) fprintf(info, " %d samples", samples_used);
+    fprintf(info, ", %.0f ms)%s%s\n", ms, pfm ? " and " : "", pfm ? pfm : "");
     return CLI_EXIT_OK;
 }

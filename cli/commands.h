@@ -10,5 +10,6 @@ int cmd_diff(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
 int cmd_figure(int argc, char **argv);
 int cmd_photoelastic(int argc, char **argv);
+int cmd_gl_data(int argc, char **argv);
 
 #endif

@@ -4,16 +4,35 @@
 #include <plplot.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
-void fig_plot_begin(const char *path, int width, int height, int nx, int ny)
+#include "io/outfile.h"
+
+/* PLplot draws one page at a time (it has global state), so one output is open at a time. */
+static biref_outfile *current;
+static char message[600];
+
+const char *fig_plot_message(void) { return message; }
+
+int fig_plot_begin(const char *path, int width, int height, int nx, int ny)
 {
     /* Palette chosen for white paper: index 0 is the background, the rest are distinguishable
      * on screen and in greyscale print (PLplot's default cmap0 is meant for a black background). */
     static const PLINT r[] = {255, 0, 214, 31, 44, 255, 148, 23, 127, 140};
     static const PLINT g[] = {255, 0, 39, 119, 160, 127, 103, 190, 127, 86};
     static const PLINT b[] = {255, 0, 40, 180, 44, 14, 189, 207, 127, 75};
+    current = biref_outfile_open(path, message, sizeof message);
+    if (!current) return -1;
+    /* PLplot closes the stream it is given at plend: it gets its own descriptor on our file. */
+    FILE *f = biref_outfile_dup_stream(current);
+    if (!f) {
+        biref_outfile_close(current, 0, NULL, 0);
+        current = NULL;
+        snprintf(message, sizeof message, "%s: cannot write: out of file descriptors", path);
+        return -1;
+    }
     plsdev("pngcairo");
-    plsfnam(path);
+    plsfile(f);
     /* 90 dpi: PLplot's character sizes are physical, so this fixes text size relative to the
      * pixel size and keeps labels readable at ~1000 px wide images. */
     plspage(90.0, 90.0, width, height, 0, 0);
@@ -21,9 +40,20 @@ void fig_plot_begin(const char *path, int width, int height, int nx, int ny)
     plssub(nx, ny);
     plinit();
     plfontld(1);
+    return 0;
 }
 
-void fig_plot_end(void) { plend(); }
+int fig_plot_end(void)
+{
+    plend();
+    if (!current) return -1;
+    /* pngcairo reports no write error: an empty regular file is the sign of one. */
+    struct stat st;
+    int ok = fstat(fileno(biref_outfile_stream(current)), &st) == 0 && (!S_ISREG(st.st_mode) || st.st_size > 0);
+    biref_status s = biref_outfile_close(current, ok, message, sizeof message);
+    current = NULL;
+    return s == BIREF_OK ? 0 : -1;
+}
 
 void fig_plot_panel(double xmin, double xmax, double ymin, double ymax, const char *xlabel, const char *ylabel,
                     const char *title)

@@ -6,9 +6,13 @@
 /* Palette indices (cmap0) set by fig_plot_begin. */
 enum { FIG_BLACK = 1, FIG_RED, FIG_BLUE, FIG_GREEN, FIG_ORANGE, FIG_PURPLE, FIG_CYAN, FIG_GREY, FIG_BROWN };
 
-/* Opens a PNG (pngcairo device) of width x height pixels divided into nx x ny panels. */
-void fig_plot_begin(const char *path, int width, int height, int nx, int ny);
-void fig_plot_end(void);
+/* Opens a PNG (pngcairo device) of width x height pixels divided into nx x ny panels, written
+ * as io/outfile.h writes files. Returns -1 (message in fig_plot_message()) if it cannot be
+ * opened; then draw nothing. */
+int fig_plot_begin(const char *path, int width, int height, int nx, int ny);
+/* Finishes the page and puts the file in place; -1 (message in fig_plot_message()) on failure. */
+int fig_plot_end(void);
+const char *fig_plot_message(void);
 
 /* Starts the next panel with axes and labels (UTF-8 text). */
 void fig_plot_panel(double xmin, double xmax, double ymin, double ymax, const char *xlabel, const char *ylabel,

@@ -16,6 +16,7 @@ static const struct {
     {"diff", cmd_diff, "CIEDE2000 difference map and statistics of two PNG images"},
     {"bench", cmd_bench, "time the spectral integration methods on a scene"},
     {"figure", cmd_figure, "regenerate the paper's figures and table 1"},
+    {"gl-data", cmd_gl_data, "the WebGL2 viewer's data: GLSL source, look-up table, scene presets"},
     {"photoelastic", cmd_photoelastic, "a stressed plate in a plane or circular polariscope (photoelasticity)"},
 };
 

@@ -3,10 +3,12 @@
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config libpng-dev libcjson-dev liblapacke-dev liblapack-dev
       libblas-dev liblcms2-dev libcairo2-dev libplplot-dev
-      plplot-driver-cairo
+      plplot-driver-cairo libqhull-dev
       libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri)
 # Python bindings and their tests, with Debian's own /usr/bin/python3.
 pkgs+=(python3-numpy python3-cffi python3-pytest)
+# The WebGL2 viewer's test: headless Chromium driven by /usr/bin/python3, the GLSL reference compiler.
+pkgs+=(chromium glslang-tools python3)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,4 +1,4 @@
-/* The renderer's analytic worker (light weights folded into the sums, far look-ups skipped)
+/* The renderer's analytic worker (both directions in one pass, far look-ups skipped)
  * against the four-pair analytic terms mixed afterwards, and the unchecked slab set-up against
  * the checked one, on random slabs: thin and thick, weak and strong birefringence, grazing
  * angles and total reflection inside the slab (surround denser than the slab). */
@@ -66,7 +66,7 @@ int main(void)
             }
         }
     }
-    printf("mixed vs four-pair analytic: worst relative difference %.3g over %d slabs (%d with total "
+    printf("one-pass vs analytic.c: worst relative difference %.3g over %d slabs (%d with total "
            "reflection, %d with a zero weight)\n",
            worst, n, tir, zero_weight);
     CHECK(tir > n / 20 && zero_weight > n / 4);

@@ -237,7 +237,7 @@ int main(void)
             biref_expansion_opts_default(&o);
             o.order = 1 + t % 3 + (t % 10 == 9);
             biref_spectrum e;
-            CHECK(biref_spectrum_expansion(sp, &st, &o, &e) == BIREF_OK);
+            CHECK(biref_expansion_series(sp, &st, &o, &e) == BIREF_OK);
             test_random_stokes(&rng, S);
             double complex C[2][2], P[2][2];
             CHECK(biref_stokes_to_coherency(S, C) == BIREF_OK);
@@ -259,7 +259,7 @@ int main(void)
                     const double complex(*Pp)[2] = with_p ? (const double complex(*)[2])P : NULL;
                     double x[3], b[3];
                     int used = -1;
-                    CHECK(biref_spectrum_expansion_polarized(sp, &st, which, (const double complex(*)[2])C, Pp, &o, x,
+                    CHECK(biref_expansion_series_polarized(sp, &st, which, (const double complex(*)[2])C, Pp, &o, x,
                                                              &used) == BIREF_OK);
                     CHECK(used == n);
                     brute_pairs(sp, &st, which, n, (const double complex(*)[2])C, Pp, b);

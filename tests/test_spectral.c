@@ -128,7 +128,7 @@ int main(void)
             CHECK(biref_slab_prepare(&s, theta, &st) == BIREF_OK);
             for (int which = 0; which < 2; which++) {
                 double E[2][2][3], H[2][2][3];
-                biref_analytic_terms(sp, &st, which, E, H);
+                biref_analytic_paper_terms(sp, &st, which, E, H);
                 size_t n = biref_path_count(which, 8);
                 biref_path *paths = malloc(n * sizeof *paths);
                 CHECK(biref_slab_paths(&st, which, 8, paths, n) == n);

@@ -20,6 +20,7 @@
 #include <stddef.h>
 
 #include "biref/common.h"
+#include "biref/integrator.h"
 #include "biref/spectral.h"
 
 #ifdef __cplusplus
@@ -115,7 +116,17 @@ BIREF_API void biref_pe_grid_size(const biref_pe_grid *g, int *nx, int *ny);
 /* Bilinear interpolation; returns 0 (and leaves out untouched) outside the grid's extent. */
 BIREF_API int biref_pe_grid_stress(const biref_pe_grid *g, double x, double y, biref_pe_stress *out);
 
-typedef enum { BIREF_PE_DISK = 0, BIREF_PE_HOLE = 1, BIREF_PE_BEAM = 2, BIREF_PE_GRID = 3 } biref_pe_field_kind;
+/* Scattered nodes from a finite-element export, interpolated over their Delaunay triangulation
+ * (linear in each triangle); see "Nodes" below. */
+typedef struct biref_pe_mesh biref_pe_mesh;
+
+typedef enum {
+    BIREF_PE_DISK = 0,
+    BIREF_PE_HOLE = 1,
+    BIREF_PE_BEAM = 2,
+    BIREF_PE_GRID = 3,
+    BIREF_PE_NODES = 4
+} biref_pe_field_kind;
 
 /* A plate: its stress field and outline. The picture shows frame[] (xmin, xmax, ymin, ymax);
  * points outside the material show the polariscope without a specimen. */
@@ -130,6 +141,7 @@ typedef struct {
     double width, height; /* hole: plate sides (m); beam: length (width) */
     double angle;       /* hole: direction of the remote tension from x towards y (rad) */
     const biref_pe_grid *grid; /* grid: borrowed */
+    const biref_pe_mesh *mesh; /* nodes: borrowed */
     double frame[4];
 } biref_pe_field;
 
@@ -142,6 +154,8 @@ BIREF_API biref_status biref_pe_field_hole(biref_pe_field *f, double a, double w
 BIREF_API biref_status biref_pe_field_beam(biref_pe_field *f, double length, double H, double h, double M, char *msg,
                                            size_t msg_len);
 BIREF_API biref_status biref_pe_field_grid(biref_pe_field *f, const biref_pe_grid *g, double h, char *msg, size_t msg_len);
+/* Nodes: the frame is the bounding box of the triangulation. */
+BIREF_API biref_status biref_pe_field_nodes(biref_pe_field *f, const biref_pe_mesh *m, double h, char *msg, size_t msg_len);
 
 /* Stress at (x, y); returns 1 inside the material, 0 outside (out untouched). */
 BIREF_API int biref_pe_field_stress(const biref_pe_field *f, double x, double y, biref_pe_stress *out);
@@ -228,6 +242,16 @@ BIREF_API biref_status biref_pe_shade_oblique(const biref_pe_setup *s, const bir
 BIREF_API biref_status biref_pe_shade_numeric(const biref_pe_setup *s, const biref_numeric_plan *plan,
                                               const biref_pe_principal *p, double xyz[3]);
 
+/* The polariscope as a light (integrator.h): its coherency C and analyzer P. */
+BIREF_API void biref_pe_light(const biref_pe_polariscope *pol, biref_light *out);
+
+/* White light through any integrator, at normal incidence (theta 0: biref_pe_slab_at, the model
+ * of biref_pe_shade_general and biref_pe_shade_numeric) or oblique (biref_pe_slab_best, as
+ * biref_pe_shade_oblique). The analytic method refuses a polariscope's light (it handles the
+ * paper's s/p model only). BIREF_ERR_INVALID for monochromatic light. */
+BIREF_API biref_status biref_pe_shade_integrated(const biref_pe_setup *s, const biref_integrator *it,
+                                                 const biref_pe_principal *p, double theta_rad, double xyz[3]);
+
 /* ------------------------------------------------------------------------ */
 /* Pictures                                                                  */
 /* ------------------------------------------------------------------------ */
@@ -247,6 +271,126 @@ typedef struct {
  * [0, 89 deg]. */
 BIREF_API biref_status biref_pe_render(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_field *f,
                                        const biref_pe_image_opts *opt, float *xyz);
+
+/* ------------------------------------------------------------------------ */
+/* Nodes from a finite-element export                                        */
+/* ------------------------------------------------------------------------ */
+
+/* Column names and units of a node table (docs/PHOTOELASTICITY.md, "Stress from FEA nodes").
+ * Names are matched case-insensitively; other columns are ignored. */
+typedef struct {
+    const char *x, *y, *sxx, *syy, *txy;
+    double length_m;  /* metres per length unit of the file (1e-3 for mm) */
+    double stress_pa; /* pascals per stress unit of the file (1e6 for MPa) */
+} biref_pe_node_format;
+
+/* Names x, y, sxx, syy, txy; millimetres; MPa. */
+BIREF_API void biref_pe_node_format_default(biref_pe_node_format *f);
+
+/* Parses a node table: a header line naming the columns, then one row per node. Fields are
+ * separated by commas (or, if the header has none, semicolons, else tabs/spaces); '#' comments,
+ * blank lines, CR LF and a UTF-8 byte-order mark are accepted. Nodes at the same position (as
+ * element-wise exports repeat them) are merged with their stresses averaged. The nodes are
+ * triangulated (Delaunay, qhull) and interpolated linearly in each triangle. On failure one line
+ * naming the row and column, e.g. "line 7, column syy (S22): not a number: 'abc'". */
+BIREF_API biref_status biref_pe_mesh_parse(const char *text, size_t len, const biref_pe_node_format *fmt, biref_pe_mesh **out,
+                                 char *msg, size_t msg_len);
+BIREF_API biref_status biref_pe_mesh_load(const char *path, const biref_pe_node_format *fmt, biref_pe_mesh **out, char *msg,
+                                size_t msg_len);
+/* Adds a boundary: one or more closed polygons, one vertex "x,y" (or "x y") per line, polygons
+ * separated by blank lines, an optional header; the material is inside by the even-odd rule
+ * (an outline plus the outlines of its holes). length_m as in biref_pe_node_format. */
+BIREF_API biref_status biref_pe_mesh_boundary_parse(biref_pe_mesh *m, const char *text, size_t len, double length_m, char *msg,
+                                          size_t msg_len);
+BIREF_API biref_status biref_pe_mesh_boundary_load(biref_pe_mesh *m, const char *path, double length_m, char *msg,
+                                         size_t msg_len);
+BIREF_API void biref_pe_mesh_destroy(biref_pe_mesh *m);
+
+typedef struct {
+    size_t rows;       /* data rows read */
+    size_t nodes;      /* distinct positions */
+    size_t triangles;  /* non-degenerate Delaunay triangles */
+    size_t loops;      /* boundary polygons (0: none) */
+    size_t loop_vertices;
+} biref_pe_mesh_info;
+BIREF_API void biref_pe_mesh_get_info(const biref_pe_mesh *m, biref_pe_mesh_info *out);
+/* Bounding box of the triangulation (xmin, xmax, ymin, ymax), m. */
+BIREF_API void biref_pe_mesh_bounds(const biref_pe_mesh *m, double b[4]);
+/* Linear interpolation in the triangle holding (x, y); returns 0 outside the triangulation or
+ * outside the boundary ("no material"), leaving out untouched. Thread-safe. */
+BIREF_API int biref_pe_mesh_stress(const biref_pe_mesh *m, double x, double y, biref_pe_stress *out);
+
+/* ------------------------------------------------------------------------ */
+/* Full-field maps                                                           */
+/* ------------------------------------------------------------------------ */
+
+typedef enum {
+    BIREF_PE_MAP_FRINGE_ORDER = 0, /* N = h C (s1 - s2) / lambda */
+    BIREF_PE_MAP_ISOCLINIC = 1,    /* direction of s1, degrees from x towards y, (-90, 90] */
+    BIREF_PE_MAP_RETARDATION = 2,  /* h C (s1 - s2), nm */
+    BIREF_PE_MAP_SIGMA1 = 3,       /* MPa */
+    BIREF_PE_MAP_SIGMA2 = 4        /* MPa */
+} biref_pe_map_kind;
+#define BIREF_PE_MAP_COUNT 5
+
+/* "fringe-order", "isoclinic", "retardation", "sigma1", "sigma2"; and the unit ("1", "deg",
+ * "nm", "MPa"). from_name: BIREF_ERR_INVALID for other names. */
+BIREF_API const char *biref_pe_map_name(biref_pe_map_kind k);
+BIREF_API const char *biref_pe_map_unit(biref_pe_map_kind k);
+BIREF_API biref_status biref_pe_map_from_name(const char *name, biref_pe_map_kind *out);
+/* One value of a map at a point with principal stresses p (fringe order at lambda_nm). */
+BIREF_API double biref_pe_map_value(biref_pe_map_kind k, const biref_pe_setup *s, double lambda_nm, const biref_pe_principal *p);
+/* The map on the pixel grid of biref_pe_render (one sample at each pixel centre, top row =
+ * frame's ymax), NAN where there is no material. */
+BIREF_API biref_status biref_pe_render_map(const biref_pe_setup *s, const biref_pe_field *f, biref_pe_map_kind k,
+                                 double lambda_nm, int width, int height, int threads, float *out);
+
+/* ------------------------------------------------------------------------ */
+/* Phase stepping                                                            */
+/* ------------------------------------------------------------------------ */
+
+/* One image of a phase-stepped circular polariscope: input polarizer and quarter-wave plate fixed
+ * (circular light, S3 = +1 as biref_pe_polariscope_make), output quarter-wave plate with its fast
+ * axis at qwp and analyzer at analyzer (degrees from x towards y). stokes: the state the output
+ * side passes. For an ideal retarder of retardation delta = 2 pi N with s1 along phi the image is
+ *   I = Ib + Ia/2 (1 + a3 cos delta + sin delta (a2 cos 2phi - a1 sin 2phi)),  a = stokes[1..3]
+ * (docs/PHOTOELASTICITY.md, "Phase stepping"). */
+typedef struct {
+    double qwp_deg, analyzer_deg;
+    double stokes[4];
+} biref_pe_step;
+
+/* The settings of the n-step method, n = 6 (Patterson & Wang's six settings) or 4 (the first four
+ * of them); returns n, or 0 for any other n. */
+BIREF_API int biref_pe_phase_steps(int n, biref_pe_step out[6]);
+/* The polariscope of one step (ideal achromatic elements). */
+BIREF_API void biref_pe_polariscope_stepped(double qwp_rad, double analyzer_rad, biref_pe_polariscope *out);
+
+typedef struct {
+    double ref_x, ref_y; /* pixel (column, row from the top) of known fringe order */
+    double ref_order;    /* fringe order there (0 for a zero-order point) */
+    double min_modulation; /* pixels with Ia below this fraction of the largest Ia are masked */
+} biref_pe_demod_opts;
+
+/* Output planes (width x height floats each; any may be NULL); NAN where masked. */
+typedef struct {
+    float *isoclinic_deg; /* direction of s1, (-90, 90] */
+    float *phase_wrapped; /* isochromatic phase 2 pi N modulo 2 pi, [0, 2 pi) */
+    float *fringe_order;  /* unwrapped N */
+    float *modulation;    /* Ia */
+    float *background;    /* Ib */
+} biref_pe_demod_maps;
+
+/* Recovers the isoclinic angle and the isochromatic phase from an n-step image set (n = 4 or 6,
+ * in the order of biref_pe_phase_steps) and unwraps the phase from the reference pixel
+ * (quality-guided flood fill that keeps the isoclinic continuous, so that the pi/2 ambiguity of
+ * the isoclinic and the sign of the phase are resolved together). The set leaves one global sign
+ * open (s1 and s2 swapped, N mirrored about the reference); it is chosen so that the fewest
+ * pixels have N < -1/4 (fringe orders are never negative). One-line reason into msg. */
+BIREF_API biref_status biref_pe_demodulate(int n, const float *const images[], int width, int height,
+                                 const biref_pe_demod_opts *o, const biref_pe_demod_maps *out, char *msg,
+                                 size_t msg_len);
+
 
 #ifdef __cplusplus
 }

@@ -134,6 +134,16 @@ biref_status biref_pe_field_grid(biref_pe_field *f, const biref_pe_grid *g, doub
     return BIREF_OK;
 }
 
+biref_status biref_pe_field_nodes(biref_pe_field *f, const biref_pe_mesh *m, double h, char *msg, size_t msg_len)
+{
+    if (!m) return biref_fail(msg, msg_len, "no nodes");
+    if (!positive(h)) return biref_fail(msg, msg_len, "thickness must be positive");
+    base(f, BIREF_PE_NODES, h);
+    f->mesh = m;
+    biref_pe_mesh_bounds(m, f->frame);
+    return BIREF_OK;
+}
+
 int biref_pe_field_stress(const biref_pe_field *f, double x, double y, biref_pe_stress *out)
 {
     biref_pe_stress s;
@@ -164,6 +174,9 @@ int biref_pe_field_stress(const biref_pe_field *f, double x, double y, biref_pe_
         break;
     case BIREF_PE_GRID:
         if (!biref_pe_grid_stress(f->grid, x, y, &s)) return 0;
+        break;
+    case BIREF_PE_NODES:
+        if (!biref_pe_mesh_stress(f->mesh, x, y, &s)) return 0;
         break;
     default: return 0;
     }

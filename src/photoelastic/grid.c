@@ -8,6 +8,7 @@
 
 #include "biref/photoelastic.h"
 #include "optics/validate.h"
+#include "photoelastic/textfile.h"
 
 struct biref_pe_grid {
     int nx, ny;
@@ -350,45 +351,11 @@ biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **o
 biref_status biref_pe_grid_load(const char *path, biref_pe_grid **out, char *msg, size_t msg_len)
 {
     if (out) *out = NULL;
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        if (msg && msg_len) snprintf(msg, msg_len, "cannot read: %s", strerror(errno));
-        return BIREF_ERR_IO;
-    }
-    size_t cap = 1 << 16, len = 0;
-    char *buf = malloc(cap);
-    int err = buf == NULL;
-    while (!err) {
-        if (len == cap) {
-            if (cap >= (size_t)MAX_FILE_BYTES) {
-                err = 2;
-                break;
-            }
-            char *nb = realloc(buf, cap * 2);
-            if (!nb) {
-                err = 1;
-                break;
-            }
-            buf = nb;
-            cap *= 2;
-        }
-        size_t got = fread(buf + len, 1, cap - len, f);
-        len += got;
-        if (got == 0) {
-            if (ferror(f)) err = 3;
-            break;
-        }
-    }
-    int saved = errno;
-    fclose(f);
-    if (err) {
-        free(buf);
-        if (msg && msg_len)
-            snprintf(msg, msg_len, "cannot read: %s",
-                     err == 2 ? "file too large" : err == 3 ? strerror(saved) : "out of memory");
-        return err == 1 ? BIREF_ERR_NOMEM : BIREF_ERR_IO;
-    }
-    biref_status st = biref_pe_grid_parse(buf, len, out, msg, msg_len);
+    char *buf;
+    size_t len;
+    biref_status st = biref_pe_read_text(path, (size_t)MAX_FILE_BYTES, &buf, &len, msg, msg_len);
+    if (st != BIREF_OK) return st;
+    st = biref_pe_grid_parse(buf, len, out, msg, msg_len);
     free(buf);
     return st;
 }

@@ -1,6 +1,6 @@
 /* Image conversion and files: PNG through libpng's simplified API, PFM written directly.
- * Files are written under a temporary name in the target directory and renamed into place,
- * so a failed write never leaves a partial file behind. */
+ * Files are written through io/outfile.h (atomic replace), so a failed write never leaves a
+ * partial file behind. */
 #include <errno.h>
 #include <math.h>
 #include <stdint.h>
@@ -13,6 +13,7 @@
 #include <png.h>
 
 #include "biref/render.h"
+#include "io/outfile.h"
 
 void biref_xyz_image_to_srgb8(const float *xyz, size_t n_pixels, unsigned char *rgb)
 {
@@ -37,69 +38,12 @@ static biref_status io_fail(char *msg, size_t msg_len, const char *path, const c
     return BIREF_ERR_IO;
 }
 
-/* Opens "<path>.tmpXXXXXX" beside the target. */
-static FILE *open_temp(const char *path, char **tmp_out, char *msg, size_t msg_len)
-{
-    size_t n = strlen(path);
-    char *tmp = malloc(n + 12);
-    if (!tmp) {
-        io_fail(msg, msg_len, path, "cannot write", "out of memory");
-        return NULL;
-    }
-    memcpy(tmp, path, n);
-    memcpy(tmp + n, ".tmpXXXXXX", 11);
-    int fd = mkstemp(tmp);
-    if (fd < 0) {
-        io_fail(msg, msg_len, path, "cannot write", strerror(errno));
-        free(tmp);
-        return NULL;
-    }
-    /* mkstemp creates 0600; an image is an ordinary, world-readable output file. */
-    (void)fchmod(fd, 0644);
-    FILE *f = fdopen(fd, "wb");
-    if (!f) {
-        io_fail(msg, msg_len, path, "cannot write", strerror(errno));
-        close(fd);
-        unlink(tmp);
-        free(tmp);
-        return NULL;
-    }
-    *tmp_out = tmp;
-    return f;
-}
-
-/* Closes f and renames tmp to path when ok; otherwise removes tmp. */
-static biref_status commit_temp(FILE *f, char *tmp, const char *path, int ok, const char *why, char *msg,
-                                size_t msg_len)
-{
-    biref_status s = BIREF_OK;
-    if (ok && fflush(f) != 0) {
-        ok = 0;
-        why = strerror(errno);
-    }
-    if (fclose(f) != 0 && ok) {
-        ok = 0;
-        why = strerror(errno);
-    }
-    if (ok && rename(tmp, path) != 0) {
-        ok = 0;
-        why = strerror(errno);
-    }
-    if (!ok) {
-        s = io_fail(msg, msg_len, path, "cannot write", why ? why : "write failed");
-        unlink(tmp);
-    }
-    free(tmp);
-    return s;
-}
-
 biref_status biref_png_write_rgb8(const char *path, int width, int height, const unsigned char *rgb, char *msg,
                                   size_t msg_len)
 {
     if (!path || !rgb || width < 1 || height < 1) return io_fail(msg, msg_len, path ? path : "(null)", "cannot write", "bad image");
-    char *tmp = NULL;
-    FILE *f = open_temp(path, &tmp, msg, msg_len);
-    if (!f) return BIREF_ERR_IO;
+    biref_outfile *o = biref_outfile_open(path, msg, msg_len);
+    if (!o) return BIREF_ERR_IO;
     png_image img;
     memset(&img, 0, sizeof img);
     img.version = PNG_IMAGE_VERSION;
@@ -107,11 +51,13 @@ biref_status biref_png_write_rgb8(const char *path, int width, int height, const
     img.height = (png_uint_32)height;
     /* 8-bit, no PNG_IMAGE_FLAG_COLORSPACE_NOT_sRGB: libpng writes the sRGB chunk. */
     img.format = PNG_FORMAT_RGB;
-    int ok = png_image_write_to_stdio(&img, f, 0, rgb, 0, NULL);
+    int ok = png_image_write_to_stdio(&img, biref_outfile_stream(o), 0, rgb, 0, NULL);
     char why[160];
     snprintf(why, sizeof why, "%s", ok ? "" : img.message);
     png_image_free(&img);
-    return commit_temp(f, tmp, path, ok, why, msg, msg_len);
+    biref_status s = biref_outfile_close(o, ok, msg, msg_len);
+    if (!ok) io_fail(msg, msg_len, path, "cannot write", why);
+    return s;
 }
 
 biref_status biref_png_read_rgb8(const char *path, int *width, int *height, unsigned char **rgb, char *msg,
@@ -131,10 +77,16 @@ biref_status biref_png_read_rgb8(const char *path, int *width, int *height, unsi
         if (msg && msg_len) snprintf(msg, msg_len, "%s: %s", path, why);
         return BIREF_ERR_INVALID;
     }
-    if (img.width > BIREF_SCENE_MAX_SIDE || img.height > BIREF_SCENE_MAX_SIDE) {
+    /* The size a header declares costs nothing to forge (a few hundred bytes can declare
+     * 16384 x 16384): refuse before allocating or decoding anything, with the same limits as
+     * the images biref renders. */
+    if (img.width > BIREF_SCENE_MAX_SIDE || img.height > BIREF_SCENE_MAX_SIDE ||
+        (uint64_t)img.width * img.height > (uint64_t)BIREF_SCENE_MAX_PIXELS) {
         png_image_free(&img);
         fclose(f);
-        if (msg && msg_len) snprintf(msg, msg_len, "%s: image too large (%ux%u)", path, img.width, img.height);
+        if (msg && msg_len)
+            snprintf(msg, msg_len, "%s: image too large (%ux%u; at most %d pixels a side and %ld pixels)", path,
+                     img.width, img.height, BIREF_SCENE_MAX_SIDE, (long)BIREF_SCENE_MAX_PIXELS);
         return BIREF_ERR_INVALID;
     }
     img.format = PNG_FORMAT_RGB;
@@ -166,9 +118,9 @@ biref_status biref_png_read_rgb8(const char *path, int *width, int *height, unsi
 biref_status biref_pfm_write(const char *path, int width, int height, const float *rgb, char *msg, size_t msg_len)
 {
     if (!path || !rgb || width < 1 || height < 1) return io_fail(msg, msg_len, path ? path : "(null)", "cannot write", "bad image");
-    char *tmp = NULL;
-    FILE *f = open_temp(path, &tmp, msg, msg_len);
-    if (!f) return BIREF_ERR_IO;
+    biref_outfile *o = biref_outfile_open(path, msg, msg_len);
+    if (!o) return BIREF_ERR_IO;
+    FILE *f = biref_outfile_stream(o);
     /* The scale's sign gives the byte order of the floats: negative = little-endian. */
     const uint16_t probe = 1;
     int little = *(const unsigned char *)&probe == 1;
@@ -176,5 +128,9 @@ biref_status biref_pfm_write(const char *path, int width, int height, const floa
     /* PFM stores the bottom row first. */
     for (int y = height - 1; ok && y >= 0; y--)
         ok = fwrite(rgb + (size_t)y * width * 3, sizeof(float), (size_t)width * 3, f) == (size_t)width * 3;
-    return commit_temp(f, tmp, path, ok, ok ? NULL : strerror(errno), msg, msg_len);
+    char why[160];
+    snprintf(why, sizeof why, "%s", ok ? "" : strerror(errno));
+    biref_status s = biref_outfile_close(o, ok, msg, msg_len);
+    if (!ok) io_fail(msg, msg_len, path, "cannot write", why);
+    return s;
 }

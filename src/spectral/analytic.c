@@ -181,8 +181,65 @@ static void reflection(const biref_spectral *sp, const biref_slab_state *st, dou
     }
 }
 
-void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
-                          double H[2][2][3])
+/* Eq. 26 (and the truncated expansion) can leave [0, 1] where internal reflections are strong:
+ * they keep some interference pairs and drop others, so their interference terms can be more
+ * negative than the light there is, and they carry net energy, which the exact ones never do:
+ * for a lossless slab sum_out (T + R) = 1 for each input at every wavelength, hence per band.
+ * E, the incoherent sum of all path energies, is physical by itself: every path's |a|^2 is its
+ * power fraction and an incoherent ray tree conserves power, so sum_out (E_T + E_R) = 1 exactly
+ * and E >= 0. Two steps, per input:
+ *
+ * 1. Each direction on its own: X - E scaled towards E (X = E + s (X - E), a convex combination
+ *    of two results, one s in [0, 1] for all bands and outputs), the largest s that makes every
+ *    entry >= 0; nothing changes where X >= 0 already. */
+static void limit_positive(const double E[2][2][3], double X[2][2][3])
+{
+    for (int i = 0; i < 2; i++) {
+        double s = 1.0;
+        for (int o = 0; o < 2; o++)
+            for (int j = 0; j < 3; j++)
+                if (X[i][o][j] < 0.0) s = fmin(s, E[i][o][j] > 0.0 ? E[i][o][j] / (E[i][o][j] - X[i][o][j]) : 0.0);
+        if (s >= 1.0) continue;
+        for (int o = 0; o < 2; o++)
+            for (int j = 0; j < 3; j++) X[i][o][j] = E[i][o][j] + s * (X[i][o][j] - E[i][o][j]);
+    }
+}
+
+/* 2. Both directions, per band: divided by sum_out (X_T + X_R), which restores the energy balance
+ *    of the exact result (dark outputs, e.g. crossed polarizers, stay dark: the correction is
+ *    relative). On the fig. 9 materials this also brings the analytic method closer to the
+ *    reference (docs/ACCURACY.md). */
+static void normalize_energy(double X[2][2][2][3])
+{
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 3; j++) {
+            double sum = X[0][i][0][j] + X[0][i][1][j] + X[1][i][0][j] + X[1][i][1][j];
+            if (!(sum > 0.0)) continue;
+            for (int d = 0; d < 2; d++)
+                for (int o = 0; o < 2; o++) X[d][i][o][j] /= sum;
+        }
+}
+
+void biref_physical_limit(const double E[2][2][2][3], double X[2][2][2][3])
+{
+    for (int d = 0; d < 2; d++) limit_positive(E[d], X[d]);
+    normalize_energy(X);
+}
+
+/* E + 2H of the paper's terms with step 1 applied. */
+static void paper_result(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
+                         double X[2][2][3])
+{
+    double H[2][2][3];
+    biref_analytic_paper_terms(sp, st, which, E, H);
+    for (int i = 0; i < 2; i++)
+        for (int o = 0; o < 2; o++)
+            for (int j = 0; j < 3; j++) X[i][o][j] = E[i][o][j] + 2.0 * H[i][o][j];
+    limit_positive(E, X);
+}
+
+void biref_analytic_paper_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
+                                double H[2][2][3])
 {
     if (which == BIREF_REFLECTION)
         reflection(sp, st, E, H);
@@ -190,14 +247,41 @@ void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, 
         transmission(sp, st, E, H);
 }
 
+void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
+                          double H[2][2][3])
+{
+    const biref_numeric_plan *coherent = biref_coherent_plan(sp, st);
+    if (coherent) {
+        /* Thin slab or evanescent coupling: eq. 26 does not hold; the exact integral of eq. 17
+         * (src/spectral/coherent.c) is returned as E with no interference term. */
+        biref_spectrum x;
+        biref_spectrum_numeric(coherent, st, &x);
+        memcpy(E, which == BIREF_REFLECTION ? x.R : x.T, sizeof x.T);
+        memset(H, 0, sizeof x.T);
+        return;
+    }
+    /* Eq. 26 drops interference pairs (siblings, orders two apart) and can leave [0, 1] where
+     * internal reflections are strong: the result is kept physical (biref_physical_limit), which
+     * needs both directions. H is adjusted so that E + 2H stays the result. */
+    double Ed[2][2][2][3], X[2][2][2][3];
+    for (int d = 0; d < 2; d++) paper_result(sp, st, d, Ed[d], X[d]);
+    normalize_energy(X);
+    memcpy(E, Ed[which], sizeof Ed[which]);
+    for (int i = 0; i < 2; i++)
+        for (int o = 0; o < 2; o++)
+            for (int j = 0; j < 3; j++) H[i][o][j] = 0.5 * (X[which][i][o][j] - E[i][o][j]);
+}
+
 void biref_spectrum_analytic(const biref_spectral *sp, const biref_slab_state *st, biref_spectrum *out)
 {
-    double E[2][2][3], H[2][2][3];
-    for (int which = 0; which < 2; which++) {
-        biref_analytic_terms(sp, st, which, E, H);
-        double(*X)[2][3] = which == BIREF_REFLECTION ? out->R : out->T;
-        for (int i = 0; i < 2; i++)
-            for (int o = 0; o < 2; o++)
-                for (int j = 0; j < 3; j++) X[i][o][j] = E[i][o][j] + 2.0 * H[i][o][j]; /* eqs. 25-26 */
+    const biref_numeric_plan *coherent = biref_coherent_plan(sp, st);
+    if (coherent) {
+        biref_spectrum_numeric(coherent, st, out);
+        return;
     }
+    double E[2][2][2][3], X[2][2][2][3];
+    for (int d = 0; d < 2; d++) paper_result(sp, st, d, E[d], X[d]); /* eqs. 25-26 */
+    normalize_energy(X);
+    memcpy(out->T, X[BIREF_TRANSMISSION], sizeof out->T);
+    memcpy(out->R, X[BIREF_REFLECTION], sizeof out->R);
 }

@@ -688,9 +688,9 @@ void biref_expansion_tail(const biref_spectral *sp, const biref_slab_state *st, 
     tail_energy(&tm, 0, order, out);
 }
 
-biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
-                                                const double complex C[2][2], const double complex P[2][2],
-                                                const biref_expansion_opts *opts, double xyz[3], int *order_used)
+biref_status biref_expansion_series_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
+                                              const double complex C[2][2], const double complex P[2][2],
+                                              const biref_expansion_opts *opts, double xyz[3], int *order_used)
 {
     if (!sp || !st || !C || !xyz || (which != BIREF_TRANSMISSION && which != BIREF_REFLECTION)) return BIREF_ERR_INVALID;
     biref_expansion_opts def;
@@ -705,8 +705,8 @@ biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const 
     return BIREF_OK;
 }
 
-biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab_state *st,
-                                      const biref_expansion_opts *opts, biref_spectrum *out)
+biref_status biref_expansion_series(const biref_spectral *sp, const biref_slab_state *st,
+                                    const biref_expansion_opts *opts, biref_spectrum *out)
 {
     if (!sp || !st || !out) return BIREF_ERR_INVALID;
     biref_expansion_opts def;
@@ -741,5 +741,93 @@ biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab
         for (int i = 0; i < 2; i++)
             for (int o = 0; o < 2; o++) memcpy(X[i][o], res[2 * i + o], sizeof res[0]);
     }
+    return BIREF_OK;
+}
+
+static int is_diagonal(const double complex M[2][2]) { return M[0][1] == 0.0 && M[1][0] == 0.0; }
+
+/* Thin slabs and evanescent legs that couple the faces: the path series converges too slowly
+ * (or, with amplifying evanescent reflections, not at all) and its incoherent tail is wrong;
+ * the exact integral of eq. 17 instead (src/spectral/coherent.c). *order_used is 0 then.
+ * Elsewhere the truncated series can leave [0, 1] slightly where internal reflections are strong
+ * (up to ~1e-2 at grazing incidence and high indices): for the paper's light model (C and P
+ * diagonal) the result is that of biref_spectrum_expansion, kept physical with both directions
+ * (biref_physical_limit); for other polarizers it is kept >= 0 by moving it towards the
+ * incoherent energy of the paths. */
+biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
+                                                const double complex C[2][2], const double complex P[2][2],
+                                                const biref_expansion_opts *opts, double xyz[3], int *order_used)
+{
+    if (!sp || !st || !C || !xyz || (which != BIREF_TRANSMISSION && which != BIREF_REFLECTION)) return BIREF_ERR_INVALID;
+    const biref_numeric_plan *coherent = biref_coherent_plan(sp, st);
+    if (coherent) {
+        if (opts && !(opts->tolerance > 0.0) && opts->order < 0) return BIREF_ERR_INVALID;
+        biref_spectrum_numeric_polarized(coherent, st, which, C, P, xyz);
+        if (order_used) *order_used = 0;
+        return BIREF_OK;
+    }
+    if (is_diagonal(C) && (!P || is_diagonal(P))) {
+        biref_spectrum x;
+        biref_status s = biref_spectrum_expansion(sp, st, opts, &x);
+        if (s != BIREF_OK) return s;
+        if (order_used) s = biref_expansion_series_polarized(sp, st, which, C, P, opts, xyz, order_used);
+        if (s != BIREF_OK) return s;
+        const double(*X)[2][3] = which == BIREF_REFLECTION ? x.R : x.T;
+        for (int j = 0; j < 3; j++) {
+            xyz[j] = 0.0;
+            for (int i = 0; i < 2; i++)
+                for (int o = 0; o < 2; o++) xyz[j] += creal(C[i][i]) * (P ? cabs(P[o][o]) * cabs(P[o][o]) : 1.0) * X[i][o][j];
+        }
+        return BIREF_OK;
+    }
+    biref_status s = biref_expansion_series_polarized(sp, st, which, C, P, opts, xyz, order_used);
+    if (s != BIREF_OK) return s;
+    if (xyz[0] < 0.0 || xyz[1] < 0.0 || xyz[2] < 0.0) {
+        quad_form f = {C, P};
+        tail_model tm;
+        tail_setup(sp, st, which, &f, 1, &tm);
+        double e[3];
+        tail_energy(&tm, 0, tm.lowest - 1, e); /* every order */
+        if (which == BIREF_REFLECTION) {
+            /* plus the direct reflection, order 0 */
+            const double complex(*r01)[2] = st->top.r_down;
+            for (int o = 0; o < 2; o++) {
+                double complex v[2];
+                for (int i = 0; i < 2; i++) v[i] = P ? r01[i][0] * P[0][o] + r01[i][1] * P[1][o] : r01[i][o];
+                double d = 0.0;
+                for (int i = 0; i < 2; i++)
+                    for (int jj = 0; jj < 2; jj++) d += creal(C[i][jj] * v[i] * conj(v[jj]));
+                for (int j = 0; j < 3; j++) e[j] += d;
+            }
+        }
+        double t = 1.0;
+        for (int j = 0; j < 3; j++)
+            if (xyz[j] < 0.0) t = fmin(t, e[j] > 0.0 ? e[j] / (e[j] - xyz[j]) : 0.0);
+        for (int j = 0; j < 3; j++) xyz[j] = e[j] + t * (xyz[j] - e[j]);
+    }
+    return BIREF_OK;
+}
+
+biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab_state *st,
+                                      const biref_expansion_opts *opts, biref_spectrum *out)
+{
+    if (!sp || !st || !out) return BIREF_ERR_INVALID;
+    const biref_numeric_plan *coherent = biref_coherent_plan(sp, st);
+    if (!coherent) {
+        biref_status s = biref_expansion_series(sp, st, opts, out);
+        if (s != BIREF_OK) return s;
+        /* The truncated series and its incoherent tail can leave [0, 1] by up to ~1e-2 where
+         * internal reflections are strong (grazing incidence, high indices). */
+        double E[2][2][2][3], H[2][2][3], X[2][2][2][3];
+        for (int which = 0; which < 2; which++) biref_analytic_paper_terms(sp, st, which, E[which], H);
+        memcpy(X[0], out->T, sizeof out->T);
+        memcpy(X[1], out->R, sizeof out->R);
+        biref_physical_limit((const double(*)[2][2][3])E, X);
+        memcpy(out->T, X[0], sizeof out->T);
+        memcpy(out->R, X[1], sizeof out->R);
+        return BIREF_OK;
+    }
+    if (opts && !(opts->tolerance > 0.0) && opts->order < 0) return BIREF_ERR_INVALID;
+    biref_spectrum_numeric(coherent, st, out);
     return BIREF_OK;
 }

@@ -154,6 +154,14 @@ biref_status biref_spectral_create(const biref_spectral_config *cfg_in, biref_sp
         biref_cmf_band_eval(&sp->band, lambda, lam);
         for (int j = 0; j < 3; j++) sp->k_centroid[j] += lam[j] * dl * 2.0 * M_PI / lambda;
     }
+    for (int i = 0; i < BIREF_COHERENT_PLANS; i++) {
+        s = biref_numeric_plan_create(sp, 48 << i, &sp->coherent[i]);
+        if (s != BIREF_OK) {
+            biref_spectral_destroy(sp);
+            return s;
+        }
+        sp->n_coherent = i + 1;
+    }
     *out = sp;
     return BIREF_OK;
 }
@@ -163,6 +171,7 @@ void biref_spectral_destroy(biref_spectral *sp)
     if (!sp) return;
     free(sp->table);
     free(sp->carrier);
+    for (int i = 0; i < sp->n_coherent; i++) biref_numeric_plan_destroy(sp->coherent[i]);
     free(sp);
 }
 

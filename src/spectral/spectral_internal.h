@@ -4,6 +4,8 @@
 
 #include "biref/spectral.h"
 
+#define BIREF_COHERENT_PLANS 9
+
 struct biref_spectral {
     biref_spectral_config cfg;
     biref_cmf_band band;
@@ -26,6 +28,9 @@ struct biref_spectral {
     /* Band centroids of the wavenumber, S(2 pi / lambda, Λ_j): evanescent legs are attenuated
      * with e^{-k_j Im(opl)} per band (dispersion of the decay ignored within a band). */
     double k_centroid[3];
+    /* Midpoint plans for the coherent regime (src/spectral/coherent.c), 48 * 2^i samples. */
+    int n_coherent;
+    biref_numeric_plan *coherent[BIREF_COHERENT_PLANS];
 };
 
 struct biref_numeric_plan {
@@ -35,7 +40,8 @@ struct biref_numeric_plan {
 };
 
 /* The two terms of the analytic approximation, S(|J|^2) ~ E + 2 H (eqs. 19, 25), for
- * which = BIREF_TRANSMISSION or BIREF_REFLECTION, indexed [in][out][band]. */
+ * which = BIREF_TRANSMISSION or BIREF_REFLECTION, indexed [in][out][band]. In the coherent
+ * regime (biref_coherent_plan) E is the exact integral and H is 0. */
 void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
                           double H[2][2][3]);
 
@@ -44,9 +50,31 @@ void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, 
 void biref_analytic_mixed(const biref_spectral *sp, const biref_slab_state *st, int which, const double w_in[2],
                           const double out_mask[2], double xyz[3]);
 
+/* Makes a result X [direction T/R][in][out][band] physical given the incoherent path energies E
+ * (src/spectral/analytic.c): every entry >= 0 (X moved towards E where needed) and the sum over
+ * outputs and directions exactly 1 per input and band (energy balance of a lossless slab). */
+void biref_physical_limit(const double E[2][2][2][3], double X[2][2][2][3]);
+
+/* The paper's terms as printed (eqs. 20-26, m = 1), in every regime (tests of the formulas). */
+void biref_analytic_paper_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
+                                double H[2][2][3]);
+
+/* The path-group series of biref_spectrum_expansion(_polarized) in every regime, without the
+ * switch to the exact integral in the coherent regime (tests of the series). */
+biref_status biref_expansion_series(const biref_spectral *sp, const biref_slab_state *st,
+                                    const biref_expansion_opts *opts, biref_spectrum *out);
+biref_status biref_expansion_series_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
+                                              const double complex C[2][2], const double complex P[2][2],
+                                              const biref_expansion_opts *opts, double xyz[3], int *order_used);
+
 /* Incoherent energy of all paths of order > order for coherency C and analyzer P (NULL = none):
  * the closed-form tail of the path-group expansion (src/spectral/expansion.c). */
 void biref_expansion_tail(const biref_spectral *sp, const biref_slab_state *st, int which, const double complex C[2][2],
                           const double complex P[2][2], int order, double out[3]);
+
+/* The plan that integrates this slab exactly when the fast methods' path picture does not hold
+ * (thin slabs, evanescent legs coupling the faces; src/spectral/coherent.c), or NULL when it
+ * does. */
+const biref_numeric_plan *biref_coherent_plan(const biref_spectral *sp, const biref_slab_state *st);
 
 #endif

@@ -22,8 +22,9 @@ if [ -n "$missing" ]; then
   fail=1
 fi
 # Every BIREF_API function is really exported.
+exported=$(nm -D --defined-only "$lib" | awk '{print $NF}')
 for f in $(grep -ohE '^BIREF_API [^;{]*\bbiref_[a-z0-9_]+\(' "$inc"/biref/*.h | grep -oE 'biref_[a-z0-9_]+\($' | tr -d '('); do
-  nm -D --defined-only "$lib" | awk '{print $NF}' | grep -qx "$f" || { echo "FAIL: $f declared but not exported" >&2; fail=1; }
+  grep -qx "$f" <<<"$exported" || { echo "FAIL: $f declared but not exported" >&2; fail=1; }
 done
 [ $fail -eq 0 ] && echo "ok: $n biref_ symbols exported, nothing else"
 exit $fail

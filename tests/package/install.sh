@@ -26,16 +26,24 @@ cd "$tmp/elsewhere"
 export PKG_CONFIG_PATH=$libdir/pkgconfig
 cc -std=c17 -Wall -Wextra -Werror "$src/examples/c/slab_colors.c" $(pkg-config --cflags --libs biref) \
   -Wl,-rpath,"$libdir" -o slab_colors
-ldd ./slab_colors | grep -q "$libdir/libbiref.so" || { echo "FAIL: slab_colors not linked to the installed libbiref.so" >&2; exit 1; }
+ldd ./slab_colors | grep -c "$libdir/libbiref.so" >/dev/null || { echo "FAIL: slab_colors not linked to the installed libbiref.so" >&2; exit 1; }
 ./slab_colors >c.json
 
 # C++ through find_package(biref) -> biref::biref.
 cmake -S "$src/examples/cpp" -B cpp -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_CXX_FLAGS="-Wall -Wextra -Werror" >/dev/null
 cmake --build cpp >/dev/null
-ldd cpp/shade_hit | grep -q "$libdir/libbiref.so" || { echo "FAIL: shade_hit not linked to the installed libbiref.so" >&2; exit 1; }
+ldd cpp/shade_hit | grep -c "$libdir/libbiref.so" >/dev/null || { echo "FAIL: shade_hit not linked to the installed libbiref.so" >&2; exit 1; }
 cpp/shade_hit >cpp.json
+# The static archive through the package: its private dependencies come along as link-only.
+cmake -S "$src/examples/cpp" -B cpp_static -DCMAKE_PREFIX_PATH="$prefix" -DUSE_STATIC_BIREF=ON \
+  -DCMAKE_CXX_FLAGS="-Wall -Wextra -Werror" >/dev/null
+cmake --build cpp_static >/dev/null
+if ldd cpp_static/shade_hit | grep -c libbiref >/dev/null; then
+  echo "FAIL: the static build of shade_hit loads libbiref.so" >&2; exit 1
+fi
+cpp_static/shade_hit >cpp_static.json
 
-/usr/bin/python3 - ref.json c.json cpp.json <<'PY'
+/usr/bin/python3 - ref.json c.json cpp.json cpp_static.json <<'PY'
 import json, math, sys
 ref = json.load(open(sys.argv[1]))
 fail = 0
@@ -52,7 +60,7 @@ for path in sys.argv[2:]:
         if key.startswith(("srgb", "hit_srgb")) and not all(math.isfinite(v) for v in vals):
             print(f"FAIL {path}: {key} = {vals}")
             fail = 1
-print("ok: C (pkg-config) and C++ (find_package) programs agree with biref slab --json" if not fail else "")
+print("ok: C (pkg-config) and C++ (find_package, shared and static) programs agree with biref slab --json" if not fail else "")
 sys.exit(fail)
 PY
 
@@ -69,6 +77,31 @@ bad = [(i, o) for i in 'sp' for o in 'sp' if abs(t[i][o] - ref[i][o]) > 1e-12]
 assert not bad, (t, ref)
 print('ok: installed Python package agrees with biref slab --json')
 "
+
+# The README's library section as written: its C program, compiled by its own command line, and
+# its Python one-liner.
+/usr/bin/python3 - "$src/README.md" <<'PY'
+import re, sys
+text = open(sys.argv[1], encoding="utf-8").read()
+lib = text[text.index("## Library"):]
+lib = lib[:lib.index("\n## ", 1)]
+open("app.c", "w").write(re.search(r"```c\n(.*?)```", lib, re.S).group(1))
+sh = re.search(r"```sh\n(.*?)```", lib, re.S).group(1)
+open("readme_cc.sh", "w").write(next(l for l in sh.splitlines() if l.startswith("cc ")) + "\n")
+py = [l for b in re.findall(r"```sh\n(.*?)```", lib, re.S) for l in b.splitlines() if "import biref" in l]
+open("readme_py.sh", "w").write(py[0] + "\n")
+PY
+bash readme_cc.sh
+LD_LIBRARY_PATH=$libdir ./app >readme_app.txt
+grep -q "^colour: T s->s XYZ" readme_app.txt || { echo "FAIL: the README's program printed:" >&2; cat readme_app.txt >&2; exit 1; }
+env -u BIREF_LIBRARY -u BIREF_CDEF PYTHONPATH="$pkgdir" bash readme_py.sh >readme_py.txt
+/usr/bin/python3 -c "
+import ast, json
+t = ast.literal_eval(open('readme_py.txt').read())
+ref = json.load(open('ref.json'))['T']
+assert all(abs(t[i][o] - ref[i][o]) <= 1e-12 for i in 'sp' for o in 'sp'), (t, ref)
+"
+echo "ok: the README's C program and Python line work as written"
 
 # Commands that read example scenes work from any directory once installed.
 "$prefix/bin/biref" bench --width 32 --height 18 --max-seconds 0.05 --methods analytic >/dev/null

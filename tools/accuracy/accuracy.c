@@ -97,11 +97,11 @@ static int make_materials(acc_run *run, const acc_options *o)
     return CLI_EXIT_OK;
 }
 
-enum { NPLANS = NNUM + 3 }; /* reference, numeric-3..128, ground truth, check */
+enum { NINTEGRATORS = NCMP + 2 }; /* the compared methods, the reference, the check */
 
-/* The spectral context and the numeric plans. Returns a CLI exit code. */
-static int make_plans(const acc_run *run, const acc_options *o, biref_spectral **sp, biref_numeric_plan *plans[NPLANS],
-                      acc_plans *pl)
+/* The spectral context and an integrator per method. Returns a CLI exit code. */
+static int make_plans(const acc_run *run, const acc_options *o, biref_spectral **sp,
+                      biref_integrator *its[NINTEGRATORS], acc_plans *pl)
 {
     biref_status s = biref_spectral_create(&run->scfg, sp);
     if (s == BIREF_ERR_INVALID)
@@ -109,25 +109,32 @@ static int make_plans(const acc_run *run, const acc_options *o, biref_spectral *
                          run->scfg.lambda_min_nm, run->scfg.lambda_max_nm),
                CLI_EXIT_USAGE;
     if (s != BIREF_OK) return cli_error(ACC_CMD, "spectral context: %s", biref_status_string(s)), CLI_EXIT_FAIL;
-    int plan_n[NPLANS];
-    plan_n[0] = o->cost_only ? 0 : run->samples_ref;
-    for (int k = 0; k < NNUM; k++) plan_n[1 + k] = ACC_NUMERIC_N[k];
-    plan_n[NNUM + 1] = BIREF_GROUND_TRUTH_SAMPLES;
-    plan_n[NNUM + 2] = o->cost_only ? 0 : run->samples_check;
-    for (int k = 0; k < NPLANS; k++) {
-        if (plan_n[k] <= 0) continue;
-        s = biref_numeric_plan_create(*sp, plan_n[k], &plans[k]);
+    biref_integrator_options io[NINTEGRATORS];
+    for (int k = 0; k < NINTEGRATORS; k++) {
+        biref_integrator_options_default(&io[k]);
+        io[k].method = BIREF_METHOD_NUMERIC;
+        io[k].samples = 0; /* none */
+    }
+    io[M_ANALYTIC].method = BIREF_METHOD_ANALYTIC;
+    io[M_EXPANSION].method = BIREF_METHOD_EXPANSION;
+    for (int k = 0; k < NNUM; k++) io[M_N3 + k].samples = ACC_NUMERIC_N[k];
+    io[M_GT].method = BIREF_METHOD_GROUND_TRUTH;
+    io[NCMP].samples = o->cost_only ? 0 : run->samples_ref;
+    io[NCMP + 1].samples = o->cost_only ? 0 : run->samples_check;
+    for (int k = 0; k < NINTEGRATORS; k++) {
+        if (io[k].method == BIREF_METHOD_NUMERIC && io[k].samples <= 0) continue;
+        s = biref_integrator_create(*sp, &io[k], &its[k]);
         if (s != BIREF_OK)
-            return cli_error(ACC_CMD, "numeric plan (%d samples): %s", plan_n[k], biref_status_string(s)),
+            return cli_error(ACC_CMD, "numeric plan (%d samples): %s",
+                             io[k].method == BIREF_METHOD_GROUND_TRUTH ? BIREF_GROUND_TRUTH_SAMPLES : io[k].samples,
+                             biref_status_string(s)),
                    CLI_EXIT_FAIL;
     }
     memset(pl, 0, sizeof *pl);
     pl->sp = *sp;
-    pl->ref = plans[0];
-    for (int k = 0; k < NNUM; k++) pl->num[k] = plans[1 + k];
-    pl->gt = plans[NNUM + 1];
-    pl->check = plans[NNUM + 2];
-    biref_expansion_opts_default(&pl->xopts);
+    for (int k = 0; k < NCMP; k++) pl->method[k] = its[k];
+    pl->ref = its[NCMP];
+    pl->check = its[NCMP + 1];
     return CLI_EXIT_OK;
 }
 
@@ -201,7 +208,7 @@ int acc_study(const acc_options *o)
     run.cost_opts = o->cost_opts;
 
     biref_spectral *sp = NULL;
-    biref_numeric_plan *plans[NPLANS] = {0};
+    biref_integrator *its[NINTEGRATORS] = {0};
     FILE *csv = NULL, *md = NULL;
     acc_plans pl;
     int rc = make_materials(&run, o);
@@ -210,7 +217,7 @@ int acc_study(const acc_options *o)
     /* Open the outputs first: a bad path should fail now, not after minutes of computation. */
     if (o->csv_path && !(csv = open_out("--csv", o->csv_path))) goto done;
     if (o->md_path && !(md = open_out("--markdown", o->md_path))) goto done;
-    rc = make_plans(&run, o, &sp, plans, &pl);
+    rc = make_plans(&run, o, &sp, its, &pl);
     if (rc != CLI_EXIT_OK) goto done;
     rc = CLI_EXIT_FAIL;
     if (compute(&run, o, &pl) || write_outputs(&run, o, &csv, &md)) goto done;
@@ -219,7 +226,7 @@ int acc_study(const acc_options *o)
 done:
     if (csv) fclose(csv), remove(o->csv_path);
     if (md) fclose(md), remove(o->md_path);
-    for (int k = 0; k < NPLANS; k++) biref_numeric_plan_destroy(plans[k]);
+    for (int k = 0; k < NINTEGRATORS; k++) biref_integrator_destroy(its[k]);
     biref_spectral_destroy(sp);
     if (run.res)
         for (int i = 0; i < run.nmat; i++) {

@@ -16,14 +16,12 @@
 
 #include "cli_common.h"
 
-enum { CASE_PREPARE = -1, MAX_RUNS = 64 };
+enum { MAX_RUNS = 64 };
 
 typedef struct {
-    const biref_spectral *sp;
     const acc_cost_pool *pool;
-    const biref_slab_state *states; /* the pool, prepared beforehand */
-    int what;                       /* CASE_PREPARE or an acc_cost_kind */
-    const biref_numeric_plan *plan;
+    const biref_slab_state *states;    /* the pool, prepared beforehand */
+    const biref_integrator *integrator; /* NULL: prepare only */
     int with_prepare;
 } cost_case;
 
@@ -39,11 +37,9 @@ static double clock_s(clockid_t id)
 /* The timed loop. Kept out of line and called exactly once per timed run so that
  * `valgrind --tool=callgrind --toggle-collect=acc_cost_loop --dump-after=acc_cost_loop` counts the
  * instructions of each case separately (one dump per call). The pool index wraps without a
- * division; the method switch is perfectly predicted. */
+ * division. */
 static __attribute__((noinline)) double acc_cost_loop(const cost_case *c, long iters)
 {
-    biref_expansion_opts xo;
-    biref_expansion_opts_default(&xo);
     double acc = 0.0;
     int k = 0;
     for (long i = 0; i < iters; i++) {
@@ -55,13 +51,12 @@ static __attribute__((noinline)) double acc_cost_loop(const cost_case *c, long i
             st = &local;
         }
         if (++k == c->pool->n) k = 0;
-        biref_spectrum out;
-        switch (c->what) {
-        case ACC_COST_ANALYTIC: biref_spectrum_analytic(c->sp, st, &out); break;
-        case ACC_COST_EXPANSION: (void)biref_spectrum_expansion(c->sp, st, &xo, &out); break;
-        case ACC_COST_NUMERIC: biref_spectrum_numeric(c->plan, st, &out); break;
-        default: acc += creal(st->top.t_down[0][0]) + creal(st->opl_down[1]); continue;
+        if (!c->integrator) {
+            acc += creal(st->top.t_down[0][0]) + creal(st->opl_down[1]);
+            continue;
         }
+        biref_spectrum out;
+        (void)biref_integrate_spectrum(c->integrator, st, &out);
         acc += out.T[0][1][1] + out.R[1][0][2];
     }
     return acc;
@@ -115,8 +110,8 @@ static void report(const acc_cost_opts *o, const char *name, const char *what, c
             t->ns_median, t->cpu_share);
 }
 
-int acc_cost_measure(const biref_spectral *sp, const acc_cost_pool *pool, const acc_cost_opts *o, acc_cost_time *prepare,
-                     acc_cost_row *rows, int nrows)
+int acc_cost_measure(const acc_cost_pool *pool, const acc_cost_opts *o, acc_cost_time *prepare, acc_cost_row *rows,
+                     int nrows)
 {
     biref_slab_state *states = malloc((size_t)pool->n * sizeof *states);
     if (!states) return cli_error("accuracy", "out of memory"), -1;
@@ -127,14 +122,13 @@ int acc_cost_measure(const biref_spectral *sp, const acc_cost_pool *pool, const 
                              pool->theta[k] * 180.0 / M_PI),
                    -1;
         }
-    cost_case c = {sp, pool, states, CASE_PREPARE, NULL, 1};
+    cost_case c = {pool, states, NULL, 1};
     if (prepare) {
         *prepare = time_case(&c, o);
         report(o, "prepare", "alone", prepare);
     }
     for (int r = 0; r < nrows; r++) {
-        c.what = (int)rows[r].kind;
-        c.plan = rows[r].plan;
+        c.integrator = rows[r].integrator;
         c.with_prepare = 0;
         rows[r].alone = time_case(&c, o);
         report(o, rows[r].name, "alone", &rows[r].alone);

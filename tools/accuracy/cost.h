@@ -9,8 +9,6 @@
 
 #include "biref/biref.h"
 
-typedef enum { ACC_COST_ANALYTIC, ACC_COST_EXPANSION, ACC_COST_NUMERIC } acc_cost_kind;
-
 typedef struct {
     double ns_median, ns_min; /* per sample, over the timed runs */
     double cpu_share;         /* lowest (thread CPU time / wall time) over the runs */
@@ -19,8 +17,7 @@ typedef struct {
 
 typedef struct {
     const char *name;
-    acc_cost_kind kind;
-    const biref_numeric_plan *plan; /* ACC_COST_NUMERIC */
+    const biref_integrator *integrator; /* biref_integrate_spectrum per sample */
     acc_cost_time alone;            /* on states prepared beforehand */
     acc_cost_time with_prepare;     /* biref_slab_prepare + integration */
 } acc_cost_row;
@@ -42,7 +39,7 @@ typedef struct {
 /* Times biref_slab_prepare alone (*prepare, skipped if NULL), then each row alone and with the prepare, in that
  * order (the order of the calls to the timed loop, which `--cost-iterations` runs under callgrind
  * rely on). Returns 0, or -1 if a state could not be prepared (one error line printed). */
-int acc_cost_measure(const biref_spectral *sp, const acc_cost_pool *pool, const acc_cost_opts *o, acc_cost_time *prepare,
+int acc_cost_measure(const acc_cost_pool *pool, const acc_cost_opts *o, acc_cost_time *prepare,
                      acc_cost_row *rows, int nrows);
 
 #endif

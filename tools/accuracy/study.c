@@ -108,12 +108,7 @@ static biref_slab rotated_slab(const acc_material *m, double phi)
 /* One compared method's spectrum (all four polarisation pairs, T and R). */
 static int method_spectrum(const acc_plans *pl, int k, const biref_slab_state *st, biref_spectrum *x)
 {
-    switch (k) {
-    case M_ANALYTIC: biref_spectrum_analytic(pl->sp, st, x); return 0;
-    case M_EXPANSION: return biref_spectrum_expansion(pl->sp, st, &pl->xopts, x) == BIREF_OK ? 0 : -1;
-    case M_GT: biref_spectrum_numeric(pl->gt, st, x); return 0;
-    default: biref_spectrum_numeric(pl->num[k - M_N3], st, x); return 0;
-    }
+    return biref_integrate_spectrum(pl->method[k], st, x) == BIREF_OK ? 0 : -1;
 }
 
 static void mix(const acc_material *m, const biref_spectrum *x, double out[2][3])
@@ -135,7 +130,7 @@ static int evaluate_point(const acc_plans *pl, const acc_material *m, double the
 
     biref_spectrum x;
     double ref_mix[2][3], x_mix[2][3], an_mix[2][3], ex_mix[2][3];
-    biref_spectrum_numeric(pl->ref, &st, &x);
+    biref_integrate_spectrum(pl->ref, &st, &x);
     mix(m, &x, ref_mix);
     for (int w = 0; w < 2; w++) {
         double lab[3];
@@ -152,7 +147,7 @@ static int evaluate_point(const acc_plans *pl, const acc_material *m, double the
     if (with_check) {
         /* Is the reference itself converged? Compare it, and the two fast methods, with a denser
          * integration (aliasing of the Fabry–Pérot terms in mm slabs, docs/ACCURACY.md). */
-        biref_spectrum_numeric(pl->check, &st, &x);
+        biref_integrate_spectrum(pl->check, &st, &x);
         mix(m, &x, x_mix);
         for (int w = 0; w < 2; w++) {
             de[M_REF_CHECK][w] = biref_delta_e00_xyz(x_mix[w], ref_mix[w]);
@@ -315,8 +310,7 @@ int acc_measure_cost(acc_run *run, const acc_plans *pl)
 {
     for (int k = 0; k < NCMP; k++) {
         run->cost[k].name = ACC_METHOD_KEY[k];
-        run->cost[k].kind = k == M_ANALYTIC ? ACC_COST_ANALYTIC : k == M_EXPANSION ? ACC_COST_EXPANSION : ACC_COST_NUMERIC;
-        run->cost[k].plan = k == M_GT ? pl->gt : (k >= M_N3 && k <= M_N128) ? pl->num[k - M_N3] : NULL;
+        run->cost[k].integrator = pl->method[k];
     }
     const double t0 = omp_get_wtime();
     biref_slab *slab = NULL;
@@ -325,7 +319,7 @@ int acc_measure_cost(acc_run *run, const acc_plans *pl)
     if (pool.n == 0) return cli_error(ACC_CMD, "--cost: out of memory"), -1;
     pool.slab = slab, pool.theta = theta;
     run->cost_pool_n = pool.n;
-    int rc = acc_cost_measure(pl->sp, &pool, &run->cost_opts, &run->cost_prepare, run->cost, NCMP);
+    int rc = acc_cost_measure(&pool, &run->cost_opts, &run->cost_prepare, run->cost, NCMP);
     free(slab), free(theta);
     if (rc) return -1;
     /* The expansion's order, hence its cost, grows towards grazing incidence; the analytic
@@ -336,7 +330,7 @@ int acc_measure_cost(acc_run *run, const acc_plans *pl)
         run->cost_band_n[b] = cost_pool(run, b, &slab, &theta);
         if (run->cost_band_n[b] == 0) continue;
         pool = (acc_cost_pool){slab, theta, run->cost_band_n[b]};
-        rc = acc_cost_measure(pl->sp, &pool, &run->cost_opts, NULL, run->cost_band[b], 2);
+        rc = acc_cost_measure(&pool, &run->cost_opts, NULL, run->cost_band[b], 2);
         free(slab), free(theta);
         if (rc) return -1;
     }

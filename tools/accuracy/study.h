@@ -111,8 +111,8 @@ typedef struct {
 
 typedef struct {
     const biref_spectral *sp;
-    const biref_numeric_plan *ref, *num[NNUM], *gt, *check;
-    biref_expansion_opts xopts; /* the defaults: adaptive order, tolerance 1e-3 */
+    const biref_integrator *method[NCMP]; /* the compared methods; the expansion with its defaults */
+    const biref_integrator *ref, *check;   /* numeric, --reference-samples and --samples-check */
 } acc_plans;
 
 

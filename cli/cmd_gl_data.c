@@ -1,0 +1,144 @@
+/* biref gl-data: the browser viewer's data (web/biref_data.js) from the library: the GLSL
+ * source, the look-up table and the uniforms of a set of scenes (docs/GPU.md). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli_render.h"
+#include "commands.h"
+#include "json_out.h"
+
+static const char *const CMD = "gl-data";
+
+static void help(void)
+{
+    printf("usage: biref gl-data -o FILE.js SCENE.json...\n\n"
+           "Writes a JavaScript module for the WebGL2 viewer (web/index.html): the GLSL source of the\n"
+           "analytic method (shaders/biref_analytic.glsl, as compiled into the library), the look-up\n"
+           "table of S(cos kD), S(sin kD) as float texels, and each scene's shader uniforms as a\n"
+           "preset named after its file. The repository's copy is made with\n"
+           "  biref gl-data -o web/biref_data.js examples/*.json\n\n"
+           "Options:\n"
+           "  -o, --output FILE    the module to write (required)\n"
+           "  -h, --help           this help\n");
+}
+
+static void add_uniform(void *user, const char *name, int comps, int count, const float *v)
+{
+    cJSON *u = cJSON_CreateArray();
+    cJSON_AddItemToArray(u, cJSON_CreateNumber(comps));
+    cJSON *vals = cJSON_CreateArray();
+    for (int i = 0; i < comps * count; i++) {
+        /* Shortest decimal that reads back as the same float. */
+        char buf[32];
+        snprintf(buf, sizeof buf, "%.9g", (double)v[i]);
+        cJSON_AddItemToArray(vals, cJSON_CreateNumber(strtod(buf, NULL)));
+    }
+    cJSON_AddItemToArray(u, vals);
+    cJSON_AddItemToObject((cJSON *)user, name, u);
+}
+
+static cJSON *vec3(const double v[3]) { return json_vec3(v); }
+
+static const char *basename_of(const char *path, char *buf, size_t n)
+{
+    const char *b = strrchr(path, '/');
+    b = b ? b + 1 : path;
+    snprintf(buf, n, "%s", b);
+    char *dot = strrchr(buf, '.');
+    if (dot && !strcmp(dot, ".json")) *dot = '\0';
+    return buf;
+}
+
+int cmd_gl_data(int argc, char **argv)
+{
+    static const struct option longopts[] = {
+        {"output", required_argument, 0, 'o'}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
+    const char *out = NULL;
+    opterr = 0;
+    optind = 1;
+    int c;
+    while ((c = getopt_long(argc, argv, ":ho:", longopts, NULL)) != -1) {
+        switch (c) {
+        case 'h': help(); return CLI_EXIT_OK;
+        case 'o': out = optarg; break;
+        default: cli_getopt_error(CMD, c, argv); return CLI_EXIT_USAGE;
+        }
+    }
+    if (!out) return cli_error(CMD, "missing -o FILE.js"), CLI_EXIT_USAGE;
+    if (optind >= argc) return cli_error(CMD, "missing SCENE.json (see biref gl-data --help)"), CLI_EXIT_USAGE;
+    int rc = cli_check_writable(CMD, out);
+    if (rc) return rc;
+    biref_spectral *sp = NULL;
+    if (biref_spectral_create(NULL, &sp) != BIREF_OK) return cli_error(CMD, "cannot build the look-up table"), CLI_EXIT_FAIL;
+
+    cJSON *presets = cJSON_CreateObject();
+    for (int i = optind; i < argc && !rc; i++) {
+        biref_scene scene;
+        if ((rc = cli_load_scene(CMD, argv[i], &scene))) break;
+        char name[256];
+        basename_of(argv[i], name, sizeof name);
+        if (cJSON_GetObjectItemCaseSensitive(presets, name)) {
+            cli_error(CMD, "%s: two scenes named '%s'", argv[i], name);
+            rc = CLI_EXIT_USAGE;
+            break;
+        }
+        cJSON *p = cJSON_CreateObject(), *u = cJSON_CreateObject();
+        biref_gl_scene_uniforms(&scene, sp, add_uniform, u);
+        cJSON *cam = cJSON_CreateObject();
+        cJSON_AddItemToObject(cam, "position", vec3(scene.camera.position));
+        cJSON_AddItemToObject(cam, "look_at", vec3(scene.camera.look_at));
+        cJSON_AddItemToObject(cam, "up", vec3(scene.camera.up));
+        cJSON_AddNumberToObject(cam, "fov_deg", scene.camera.fov_deg);
+        cJSON_AddNumberToObject(cam, "width", scene.camera.width);
+        cJSON_AddNumberToObject(cam, "height", scene.camera.height);
+        cJSON *axes = cJSON_CreateArray();
+        for (int k = 0; k < scene.n_slabs; k++) {
+            double a[3];
+            biref_axis_normalize(scene.slabs[k].axis, a);
+            cJSON_AddItemToArray(axes, vec3(a));
+        }
+        cJSON_AddItemToObject(p, "camera", cam);
+        cJSON_AddItemToObject(p, "axes", axes);
+        cJSON_AddItemToObject(p, "uniforms", u);
+        cJSON_AddItemToObject(presets, name, p);
+    }
+    biref_gl_table_info info;
+    biref_gl_table(sp, &info, NULL);
+    float *tex = rc ? NULL : malloc((size_t)info.width * info.height * 4 * sizeof *tex);
+    if (!rc && !tex) {
+        cli_error(CMD, "out of memory");
+        rc = CLI_EXIT_FAIL;
+    }
+    if (!rc) {
+        biref_gl_table(sp, &info, tex);
+        cJSON *src = cJSON_CreateString(biref_gl_shader_source());
+        char *src_text = cJSON_PrintUnformatted(src), *preset_text = cJSON_PrintUnformatted(presets);
+        cJSON_Delete(src);
+        FILE *f = fopen(out, "w");
+        if (!f || !src_text || !preset_text) {
+            cli_error(CMD, "%s: cannot write", out);
+            rc = CLI_EXIT_FAIL;
+        } else {
+            fprintf(f, "// Generated by `biref gl-data` from the biref library: the GLSL source, the look-up table\n"
+                       "// and the example scenes' uniforms. Do not edit; regenerate (docs/GPU.md).\n");
+            fprintf(f, "export const shaderSource = %s;\n", src_text);
+            fprintf(f, "export const table = {width: %d, height: %d, texels: new Float32Array([", info.width, info.height);
+            const size_t n = (size_t)info.width * info.height * 4;
+            for (size_t k = 0; k < n; k++) fprintf(f, "%s%.9g", k ? (k % 16 ? "," : ",\n") : "\n", (double)tex[k]);
+            fprintf(f, "])};\nexport const presets = %s;\n", preset_text);
+            if (fclose(f) != 0) {
+                cli_error(CMD, "%s: cannot write", out);
+                rc = CLI_EXIT_FAIL;
+            }
+        }
+        free(src_text);
+        free(preset_text);
+    }
+    free(tex);
+    cJSON_Delete(presets);
+    biref_spectral_destroy(sp);
+    if (!rc) printf("wrote %s (%d texels, %d presets)\n", out, info.width * info.height, argc - optind);
+    return rc;
+}

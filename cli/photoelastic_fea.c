@@ -1,0 +1,156 @@
+/* biref photoelastic: the extension options (nodes, maps, phase steps, key, scale bar), their
+ * help and checks, and stress from finite-element node exports (docs/PHOTOELASTICITY.md). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "photoelastic_ext.h"
+
+static const char *const CMD = "photoelastic";
+
+void pe_ext_init(pe_ext *e)
+{
+    memset(e, 0, sizeof *e);
+    biref_pe_node_format_default(&e->fmt);
+    e->map = -1;
+}
+
+void pe_ext_free(pe_ext *e)
+{
+    biref_pe_mesh_destroy(e->mesh);
+    e->mesh = NULL;
+}
+
+void pe_ext_help(void)
+{
+    printf("Stress from finite-element nodes (scattered; Delaunay triangulation, linear in each triangle):\n"
+           "  --stress-nodes FILE  node table with a header; other columns are ignored; comma, semicolon or\n"
+           "                       blank separated; repeated nodes are averaged\n"
+           "  --columns x=X,y=Y,sxx=S11,syy=S22,txy=S12   column names (default x, y, sxx, syy, txy)\n"
+           "  --length-unit mm|m   unit of the coordinates (default mm)\n"
+           "  --stress-unit MPa|Pa unit of the stresses (default MPa)\n"
+           "  --boundary FILE      outline polygons (x,y per line, blank line between polygons, even-odd:\n"
+           "                       an outline and its holes); outside it, or outside the triangulation,\n"
+           "                       there is no material (background in pictures, NaN in maps)\n\n"
+           "Data outputs (with -o FILE):\n"
+           "  --map M              fringe-order, isoclinic (deg, direction of s1), retardation (nm),\n"
+           "                       sigma1 or sigma2 (MPa) on the picture's pixel grid instead of a picture:\n"
+           "                       FILE.pfm (float, NaN = no material) or FILE.csv (x_mm,y_mm,value)\n"
+           "  --pfm                write the picture as float PFM (linear sRGB; mono untinted: grey)\n"
+           "  --phase-steps 4|6    the images of a phase-stepped circular polariscope (six-step method of\n"
+           "                       Patterson & Wang; 4 = its first four), mono light: FILE-1.pfm ... or\n"
+           "                       FILE-1.png ... (16-bit linear grey); recover the maps with\n"
+           "                       'biref photoelastic demodulate'\n"
+           "  --key                add a fringe-order colour key (Michel-Levy chart) below the picture\n"
+           "  --scale-bar          add a length bar to the picture\n\n");
+}
+
+static int parse_columns(pe_ext *e, const char *arg)
+{
+    static const char *const roles[5] = {"x", "y", "sxx", "syy", "txy"};
+    const char **slots[5] = {&e->fmt.x, &e->fmt.y, &e->fmt.sxx, &e->fmt.syy, &e->fmt.txy};
+    char buf[512];
+    if (strlen(arg) >= sizeof buf) return cli_error(CMD, "--columns: value too long"), -1;
+    strcpy(buf, arg);
+    char *save = NULL;
+    for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+        char *eq = strchr(tok, '=');
+        if (!eq || eq == tok || !eq[1])
+            return cli_error(CMD, "--columns: expected ROLE=NAME pairs such as sxx=S11, got '%s'", tok), -1;
+        *eq = '\0';
+        int r = -1;
+        for (int i = 0; i < 5; i++)
+            if (!strcmp(tok, roles[i])) r = i;
+        if (r < 0) return cli_error(CMD, "--columns: unknown role '%s' (expected x, y, sxx, syy or txy)", tok), -1;
+        if (strlen(eq + 1) >= sizeof e->names[r]) return cli_error(CMD, "--columns: name too long: '%s'", eq + 1), -1;
+        strcpy(e->names[r], eq + 1);
+        *slots[r] = e->names[r];
+    }
+    e->have_columns = 1;
+    return 0;
+}
+
+int pe_ext_option(pe_ext *e, int code, const char *arg)
+{
+    switch (code) {
+    case OPT_PE_NODES: e->nodes_path = arg; return 1;
+    case OPT_PE_BOUNDARY: e->boundary_path = arg; return 1;
+    case OPT_PE_COLUMNS: return parse_columns(e, arg) ? -1 : 1;
+    case OPT_PE_LENGTH_UNIT:
+        if (!strcmp(arg, "mm"))
+            e->fmt.length_m = 1e-3;
+        else if (!strcmp(arg, "m"))
+            e->fmt.length_m = 1.0;
+        else
+            return cli_error(CMD, "--length-unit: expected mm or m, got '%s'", arg), -1;
+        e->have_units = 1;
+        return 1;
+    case OPT_PE_STRESS_UNIT:
+        if (!strcmp(arg, "MPa"))
+            e->fmt.stress_pa = 1e6;
+        else if (!strcmp(arg, "Pa"))
+            e->fmt.stress_pa = 1.0;
+        else
+            return cli_error(CMD, "--stress-unit: expected MPa or Pa, got '%s'", arg), -1;
+        e->have_units = 1;
+        return 1;
+    case OPT_PE_MAP: {
+        biref_pe_map_kind k;
+        if (biref_pe_map_from_name(arg, &k) != BIREF_OK)
+            return cli_error(CMD, "--map: expected fringe-order, isoclinic, retardation, sigma1 or sigma2, got '%s'", arg),
+                   -1;
+        e->map = (int)k;
+        return 1;
+    }
+    case OPT_PE_PFM: e->pfm = 1; return 1;
+    case OPT_PE_PHASE_STEPS:
+        if (strcmp(arg, "4") && strcmp(arg, "6")) return cli_error(CMD, "--phase-steps: expected 4 or 6, got '%s'", arg), -1;
+        e->phase_steps = atoi(arg);
+        return 1;
+    case OPT_PE_KEY: e->key = 1; return 1;
+    case OPT_PE_SCALE_BAR: e->scale_bar = 1; return 1;
+    default: return 0;
+    }
+}
+
+int pe_ext_check(const pe_ext *e, int have_kind, int mono, int have_out, int have_tilt)
+{
+    if (e->nodes_path && have_kind) return cli_error(CMD, "give one of --preset, --stress-grid or --stress-nodes"), -1;
+    if (!e->nodes_path && (e->have_columns || e->have_units || e->boundary_path))
+        return cli_error(CMD, "%s needs --stress-nodes",
+                         e->have_columns ? "--columns" : e->boundary_path ? "--boundary" : "--length-unit/--stress-unit"),
+               -1;
+    const int outputs = (e->map >= 0) + e->pfm + (e->phase_steps > 0);
+    if (outputs > 1) return cli_error(CMD, "give at most one of --map, --pfm and --phase-steps"), -1;
+    if (outputs && !have_out) return cli_error(CMD, "--map, --pfm and --phase-steps write to -o FILE"), -1;
+    if ((e->key || e->scale_bar) && (outputs || !have_out))
+        return cli_error(CMD, "--key and --scale-bar draw on the PNG picture (-o FILE.png)"), -1;
+    if (e->phase_steps && !mono)
+        return cli_error(CMD, "--phase-steps needs --light mono (the phase-stepping formulas hold for one wavelength)"), -1;
+    if ((e->phase_steps || e->map >= 0) && have_tilt)
+        return cli_error(CMD, "--phase-steps and --map are for normal incidence (no --tilt-deg)"), -1;
+    return 0;
+}
+
+int pe_ext_nodes_field(pe_ext *e, biref_pe_field *f, double h)
+{
+    char msg[512];
+    biref_status st = biref_pe_mesh_load(e->nodes_path, &e->fmt, &e->mesh, msg, sizeof msg);
+    if (st == BIREF_OK && e->boundary_path) {
+        st = biref_pe_mesh_boundary_load(e->mesh, e->boundary_path, e->fmt.length_m, msg, sizeof msg);
+        if (st != BIREF_OK) {
+            cli_error(CMD, "%s: %s", e->boundary_path, msg);
+            return st == BIREF_ERR_NOMEM ? CLI_EXIT_FAIL : CLI_EXIT_USAGE;
+        }
+    }
+    if (st != BIREF_OK) {
+        cli_error(CMD, "%s: %s", e->nodes_path, msg);
+        return st == BIREF_ERR_NOMEM ? CLI_EXIT_FAIL : CLI_EXIT_USAGE;
+    }
+    if (biref_pe_field_nodes(f, e->mesh, h, msg, sizeof msg) != BIREF_OK) {
+        cli_error(CMD, "nodes: %s", msg);
+        return CLI_EXIT_USAGE;
+    }
+    return CLI_EXIT_OK;
+}

@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# The WebGL2 viewer (web/index.html) in headless Chromium (SwiftShader, no GPU needed): a
+# screenshot of each example preset against the CPU renderer at 320x180, mean dE00 <= 0.3 and
+# 99th percentile <= 1; a slab changed through the page's controls against the CPU render of the
+# changed scene. Also: web/biref_data.js is what `biref gl-data` makes now, and the shader
+# compiles as GLSL ES 3.00 and as desktop GLSL 4.30 with the reference compiler. A machine
+# without Chromium or glslangValidator fails this test.
+set -u
+. "$(dirname "$0")/lib.sh"
+W=320 H=180
+
+json_num() { sed -n "s/^[[:space:]]*\"$1\":[[:space:]]*\\([-0-9.eE+]*\\),*\$/\\1/p" "$2" | head -1; }
+# check_close NAME GOT.png REF.png: within the thresholds.
+check_close() {
+  expect_ok "$1 diff" diff "$2" "$3" --json
+  local mean p99
+  mean=$(json_num mean "$tmpdir/out") p99=$(json_num p99 "$tmpdir/out")
+  echo "$1: browser vs cpu dE00 mean $mean, p99 $p99"
+  awk -v m="$mean" -v p="$p99" 'BEGIN { exit !(m != "" && p != "" && m <= 0.3 && p <= 1.0) }' ||
+    { echo "FAIL ($1): mean $mean > 0.3 or p99 $p99 > 1"; fails=$((fails + 1)); }
+}
+
+# The committed data module is the library's current output.
+expect_ok "gl-data" gl-data -o "$tmpdir/biref_data.js" examples/*.json
+cmp -s "$tmpdir/biref_data.js" web/biref_data.js ||
+  { echo "FAIL: web/biref_data.js is stale: run  biref gl-data -o web/biref_data.js examples/*.json"; fails=$((fails + 1)); }
+expect_error "gl-data without scenes" gl-data -o "$tmpdir/x.js"
+
+# One source, two dialects.
+for dialect in es desktop; do
+  if [ $dialect = es ]; then
+    prelude='#version 300 es\nprecision highp float;\nprecision highp int;\nprecision highp sampler2D;\n'
+  else
+    prelude='#version 430 core\n'
+  fi
+  for stage in vert frag; do
+    defs='#define BIREF_VERTEX\n'
+    [ $stage = frag ] && defs='#define BIREF_FRAGMENT\n#define BIREF_SCENE\n#define BIREF_OUTPUT_SRGB\n#define BIREF_MAX_SLABS 8\n#define BIREF_MAX_PANELS 4\n'
+    { printf "$prelude$defs"; cat shaders/biref_analytic.glsl; } >"$tmpdir/s.$stage"
+    glslangValidator "$tmpdir/s.$stage" >"$tmpdir/glslang.log" 2>&1 ||
+      { echo "FAIL: the shader does not compile as $dialect $stage:"; head -5 "$tmpdir/glslang.log"; fails=$((fails + 1)); }
+  done
+done
+
+url="file://$PWD/web/index.html"
+pages=()
+for scene in examples/*.json; do
+  name=$(basename "$scene" .json)
+  method=()
+  grep -q '"linear"' "$scene" && method=(--method expansion)
+  expect_ok "$name cpu" render "$scene" -o "$tmpdir/$name-cpu.png" --width $W --height $H --quiet "${method[@]}"
+  pages+=("$url?scene=$name&width=$W&height=$H&view=canvas" "$tmpdir/$name-web.png")
+done
+# Controls: a thicker fig. 9c slab with another index, set through the page's sliders.
+sed -e 's/"thickness_mm": 1.15/"thickness_mm": 1.25/' -e 's/"eta_o": 1.775/"eta_o": 1.7/' examples/fig9c.json >"$tmpdir/changed.json"
+expect_ok "changed cpu" render "$tmpdir/changed.json" -o "$tmpdir/changed-cpu.png" --width $W --height $H --quiet
+pages+=("$url?scene=fig9c&width=$W&height=$H&view=canvas&thickness_um=1250&eta_o=1.7" "$tmpdir/changed-web.png")
+
+if ! /usr/bin/python3 tests/web/screenshot.py $W $H "${pages[@]}" 2>"$tmpdir/shot.err"; then
+  echo "FAIL: screenshots:"; sed 's/^/  /' "$tmpdir/shot.err"; fails=$((fails + 1))
+else
+  for scene in examples/*.json; do
+    name=$(basename "$scene" .json)
+    check_close "$name" "$tmpdir/$name-web.png" "$tmpdir/$name-cpu.png"
+  done
+  check_close "changed through the controls" "$tmpdir/changed-web.png" "$tmpdir/changed-cpu.png"
+  # ... and the comparison can fail: the changed page is far from the unchanged scene.
+  expect_ok "changed vs unchanged" diff "$tmpdir/changed-web.png" "$tmpdir/fig9c-cpu.png" --json
+  mean=$(json_num mean "$tmpdir/out")
+  awk -v m="$mean" 'BEGIN { exit !(m > 0.3) }' || { echo "FAIL (the comparison does not see the change: $mean)"; fails=$((fails + 1)); }
+fi
+finish

@@ -1,0 +1,141 @@
+/* Stress from finite-element nodes: parsing (column mapping, units, separators, one-line errors
+ * naming row and column), merging of repeated nodes, the Delaunay triangulation's linear
+ * interpolation (exact for linear fields), the hull and the boundary as "no material". */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "biref/photoelastic.h"
+#include "test_util.h"
+
+static biref_pe_mesh *parse(const char *text, const biref_pe_node_format *f, char *msg)
+{
+    biref_pe_node_format d;
+    biref_pe_node_format_default(&d);
+    biref_pe_mesh *m = NULL;
+    if (biref_pe_mesh_parse(text, strlen(text), f ? f : &d, &m, msg, 256) != BIREF_OK) return NULL;
+    return m;
+}
+
+static void expect_error(const char *text, const char *needle)
+{
+    char msg[256] = "";
+    biref_pe_mesh *m = parse(text, NULL, msg);
+    CHECK(m == NULL);
+    CHECK(strchr(msg, '\n') == NULL);
+    if (!strstr(msg, needle)) {
+        fprintf(stderr, "expected '%s' in '%s'\n", needle, msg);
+        CHECK(0);
+    }
+    biref_pe_mesh_destroy(m);
+}
+
+/* A linear field sampled at scattered nodes is reproduced exactly everywhere inside. */
+static double lin(int c, double x, double y)
+{
+    static const double k[3][3] = {{1.5, 0.2, -0.3}, {-0.7, 0.05, 0.4}, {0.25, -0.1, 0.15}};
+    return k[c][0] + k[c][1] * x + k[c][2] * y;
+}
+
+static void test_linear(void)
+{
+    test_rng r = {12345};
+    size_t cap = 1 << 16, n = 0;
+    char *t = malloc(cap);
+    n += (size_t)snprintf(t + n, cap - n, "id;X;Y;Sxx;Syy;Sxy;extra\n");
+    for (int i = 0; i < 400; i++) {
+        double x = test_uniform(&r, -10, 10), y = test_uniform(&r, -10, 10);
+        n += (size_t)snprintf(t + n, cap - n, "%d;%.17g;%.17g;%.17g;%.17g;%.17g;zz\n", i, x, y, lin(0, x, y), lin(1, x, y),
+                              lin(2, x, y));
+    }
+    /* A repeated node with a different stress: averaged (element-wise exports repeat nodes). */
+    n += (size_t)snprintf(t + n, cap - n, "900;20;20;1;2;3;a\n901;20;20;3;4;5;b\n");
+    biref_pe_node_format f = {"X", "Y", "SXX", "syy", "sxy", 1.0, 1.0}; /* case-insensitive names, m, Pa */
+    char msg[256] = "";
+    biref_pe_mesh *m = parse(t, &f, msg);
+    CHECK(m != NULL);
+    if (!m) {
+        fprintf(stderr, "%s\n", msg);
+        free(t);
+        return;
+    }
+    biref_pe_mesh_info info;
+    biref_pe_mesh_get_info(m, &info);
+    CHECK(info.rows == 402);
+    CHECK(info.nodes == 401);
+    CHECK(info.triangles > 700);
+    double err = 0;
+    int inside = 0;
+    for (int i = 0; i < 2000; i++) {
+        double x = test_uniform(&r, -9, 9), y = test_uniform(&r, -9, 9);
+        biref_pe_stress s;
+        if (!biref_pe_mesh_stress(m, x, y, &s)) continue;
+        inside++;
+        err = fmax(err, fabs(s.sxx - lin(0, x, y)) + fabs(s.syy - lin(1, x, y)) + fabs(s.txy - lin(2, x, y)));
+    }
+    CHECK(inside > 1900);
+    CHECK(err < 1e-12);
+    biref_pe_stress s = {0, 0, 0};
+    CHECK(biref_pe_mesh_stress(m, 20, 20, &s) == 1); /* the merged node itself */
+    CHECK_NEAR(s.sxx, 2.0, 1e-12);
+    CHECK_NEAR(s.txy, 4.0, 1e-12);
+    CHECK(biref_pe_mesh_stress(m, -30, 0, &s) == 0); /* outside the hull */
+    /* Boundary: a 16 x 16 square with a hole of 2 x 2 (even-odd), in mm. */
+    const char *b = "x,y\n-8,-8\n8,-8\n8,8\n-8,8\n\n-1,-1\n1,-1\n1,1\n-1,1\n";
+    CHECK(biref_pe_mesh_boundary_parse(m, b, strlen(b), 1.0, msg, sizeof msg) == BIREF_OK);
+    CHECK(biref_pe_mesh_stress(m, 0, 0, &s) == 0);      /* in the hole */
+    CHECK(biref_pe_mesh_stress(m, 1.5, 0.3, &s) == 1); /* material */
+    CHECK(biref_pe_mesh_stress(m, 8.5, 0, &s) == 0);   /* outside the outline */
+    biref_pe_mesh_get_info(m, &info);
+    CHECK(info.loops == 2 && info.loop_vertices == 8);
+    CHECK(biref_pe_mesh_boundary_parse(m, "0,0\n1,1\n", 8, 1.0, msg, sizeof msg) != BIREF_OK);
+    CHECK(strstr(msg, "at least 3 vertices") != NULL);
+    CHECK(biref_pe_mesh_boundary_parse(m, "0,0\n1,x\n2,2\n", 12, 1.0, msg, sizeof msg) != BIREF_OK);
+    CHECK(strstr(msg, "line 2, column y: not a number: 'x'") != NULL);
+    biref_pe_mesh_destroy(m);
+    /* Units: the same numbers in mm and MPa scale by 1e-3 and 1e6; whitespace separators. */
+    const char *u = "x y sxx syy txy\n0 0 1 0 0\n10 0 1 0 0\n0 10 1 0 0\n";
+    m = parse(u, NULL, msg);
+    CHECK(m != NULL);
+    if (m) {
+        CHECK(biref_pe_mesh_stress(m, 2e-3, 2e-3, &s) == 1);
+        CHECK_NEAR(s.sxx, 1e6, 1e-6);
+        double bb[4];
+        biref_pe_mesh_bounds(m, bb);
+        CHECK_NEAR(bb[1], 0.01, 1e-15);
+    }
+    biref_pe_mesh_destroy(m);
+    free(t);
+}
+
+static void test_errors(void)
+{
+    expect_error("", "empty file");
+    expect_error("node,x,y,s11,s22,s12\n1,0,0,1,2,3\n", "the header has no column 'sxx' for sxx");
+    expect_error("0,0,1,2,3\n", "line 1: expected a header naming the columns");
+    expect_error("x,y,sxx,syy,txy\n0,0,1,2,3\n1,0,1,abc,3\n0,1,1,2,3\n", "line 3, column syy: not a number: 'abc'");
+    expect_error("x,y,sxx,syy,txy\n0,0,1,2,3\n1,0,1,nan,3\n0,1,1,2,3\n", "line 3, column syy: not a finite number: 'nan'");
+    expect_error("x,y,sxx,syy,txy\n0,0,1,2,3\n1,0,1,,3\n0,1,1,2,3\n", "line 3, column syy: empty field");
+    expect_error("x,y,sxx,syy,txy\n0,0,1,2,3\n1,0,1,2\n0,1,1,2,3\n", "line 3: expected 5 fields as in the header, got 4");
+    expect_error("x,y,sxx,syy,txy\n0,0,1,2,3\n1,0,1,2,3\n0,1,1,2", "line 4: truncated row (4 of 5 fields");
+    expect_error("x,y,sxx,syy,txy\n0,0,1,2,3\n1,0,1,2,3\n", "after 2 data rows");
+    expect_error("x,y,sxx,syy,txy\n0,0,1,2,3\n1,1,1,2,3\n2,2,1,2,3\n3,3,1,2,3\n", "cannot triangulate");
+    expect_error("x,y,x,syy,txy\n", "column x appears twice");
+    expect_error("x,y,sxx,syy,txy\n0,0,1e400,2,3\n", "line 2, column sxx: not a finite number");
+    /* A mapped name is reported with its role. */
+    biref_pe_node_format f;
+    biref_pe_node_format_default(&f);
+    f.syy = "S22";
+    char msg[256] = "";
+    biref_pe_mesh *m = parse("x,y,sxx,S22,txy\n0,0,1,2,3\n1,0,1,?,3\n0,1,1,2,3\n", &f, msg);
+    CHECK(m == NULL && strstr(msg, "line 3, column S22 (syy): not a number: '?'") != NULL);
+    biref_pe_mesh_destroy(m);
+}
+
+int main(void)
+{
+    test_linear();
+    test_errors();
+    return test_report("test_pe_nodes");
+}

@@ -1,0 +1,169 @@
+/* Every spectral method gives physical numbers on every valid slab: band-integrated T and R in
+ * [0, 1] and, per input polarization and band, T + R summed over the outputs at most 1 (lossless
+ * slab), within 1e-6. Seeded random slabs of five kinds: thin (1 nm - 3 um), thick (3 um - 10 mm),
+ * an ambient index above a slab index with the light beyond the critical angle inside (total
+ * reflection, frustrated when thin), near the optic axis, and near grazing incidence. Also: the
+ * analytic method and the expansion stay within their documented dE00 envelope of the ground
+ * truth (docs/ACCURACY.md, "Where each method is valid") where the ground truth is alias-free. */
+#include <complex.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "biref/biref.h"
+#include "spectral/spectral_internal.h"
+#include "test_util.h"
+
+enum { KIND_THIN, KIND_THICK, KIND_TIR, KIND_AXIS, KIND_GRAZING, N_KINDS };
+static const char *const KIND_NAMES[N_KINDS] = {"thin", "thick", "eta_i > eta", "near axis", "near 90 deg"};
+
+static void random_slab(test_rng *r, int kind, biref_slab *s, double *theta)
+{
+    double A[3];
+    test_random_axis(r, A);
+    s->eta_o = test_uniform(r, 1, 3);
+    s->eta_e = fmin(3, fmax(1, s->eta_o + test_uniform(r, -0.5, 0.5)));
+    s->eta_i = test_uniform(r, 1, 2);
+    double lo = 1, hi = 1e7, th_lo = 0, th_hi = 89.99;
+    switch (kind) {
+    case KIND_THIN: hi = 3000; break;
+    case KIND_THICK: lo = 3000; break;
+    case KIND_TIR:
+        /* eta_i above the smaller slab index and the angle beyond its critical angle. */
+        s->eta_i = fmin(s->eta_o, s->eta_e) + test_uniform(r, 0.01, 0.8);
+        th_lo = asin(fmin(1, fmin(s->eta_o, s->eta_e) / s->eta_i)) * 180 / M_PI;
+        hi = test_uniform(r, 0, 1) < 0.7 ? 2000 : 1e7;
+        break;
+    case KIND_AXIS:
+        /* At normal incidence the waves run along y: an axis within a few degrees of y. */
+        A[0] = test_uniform(r, -0.05, 0.05), A[1] = 1, A[2] = test_uniform(r, -0.05, 0.05);
+        th_hi = 3;
+        break;
+    case KIND_GRAZING: th_lo = 85; break;
+    }
+    for (int i = 0; i < 3; i++) s->axis[i] = A[i];
+    s->thickness_nm = exp(test_uniform(r, log(lo), log(hi)));
+    *theta = test_uniform(r, th_lo, th_hi) * M_PI / 180;
+}
+
+/* Largest violation of 0 <= T, R <= 1 and sum_out (T + R) <= 1 per input and band. */
+static double violation(const biref_spectrum *x)
+{
+    double w = 0;
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 3; j++) {
+            double sum = 0;
+            for (int o = 0; o < 2; o++) {
+                double t = x->T[i][o][j], r = x->R[i][o][j];
+                if (!isfinite(t) || !isfinite(r)) return INFINITY;
+                w = fmax(w, fmax(fmax(-t, -r), fmax(t - 1, r - 1)));
+                sum += t + r;
+            }
+            w = fmax(w, sum - 1);
+        }
+    return w;
+}
+
+/* dE00 of the unpolarized light, open and crossed (s analyzer, p in), T and R. */
+static double worst_de(const biref_spectrum *a, const biref_spectrum *g)
+{
+    static const double unpol[2] = {0.5, 0.5}, open[2] = {1, 1}, p_in[2] = {0, 1}, s_out[2] = {1, 0};
+    double w = 0, xa[3], xg[3];
+    for (int which = 0; which < 2; which++) {
+        const double(*A)[2][3] = which ? a->R : a->T, (*G)[2][3] = which ? g->R : g->T;
+        biref_spectrum_mix(A, unpol, open, xa);
+        biref_spectrum_mix(G, unpol, open, xg);
+        w = fmax(w, biref_delta_e00_xyz(xa, xg));
+        biref_spectrum_mix(A, p_in, s_out, xa);
+        biref_spectrum_mix(G, p_in, s_out, xg);
+        w = fmax(w, biref_delta_e00_xyz(xa, xg));
+    }
+    return w;
+}
+
+int main(void)
+{
+    const int per_kind = getenv("BIREF_TEST_QUICK") ? 40 : 200;
+    biref_spectral *sp = NULL;
+    CHECK(biref_spectral_create(NULL, &sp) == BIREF_OK);
+    biref_numeric_plan *gt = NULL, *n32 = NULL;
+    CHECK(biref_numeric_plan_create(sp, BIREF_GROUND_TRUTH_SAMPLES, &gt) == BIREF_OK);
+    CHECK(biref_numeric_plan_create(sp, 32, &n32) == BIREF_OK);
+    enum { M_ANALYTIC, M_EXPANSION, M_EXPANSION8, M_NUMERIC32, M_GT, N_M };
+    static const char *const NAMES[N_M] = {"analytic", "expansion", "expansion order 8", "numeric-32", "ground truth"};
+    double worst[N_KINDS][N_M] = {{0}}, de_coherent[2] = {0, 0}, worst_polarized = 0;
+    int coherent_count = 0, evanescent_count = 0;
+    test_rng rng = {20261123};
+    for (int kind = 0; kind < N_KINDS; kind++)
+        for (int t = 0; t < per_kind; t++) {
+            biref_slab s;
+            double theta;
+            random_slab(&rng, kind, &s, &theta);
+            char msg[256];
+            CHECK(biref_slab_check(&s, msg, sizeof msg) == BIREF_OK);
+            biref_slab_state st;
+            CHECK(biref_slab_prepare(&s, theta, &st) == BIREF_OK);
+            evanescent_count += st.total_reflection != 0;
+            biref_expansion_opts o8;
+            biref_expansion_opts_default(&o8);
+            o8.order = 8;
+            biref_spectrum x[N_M];
+            biref_spectrum_analytic(sp, &st, &x[M_ANALYTIC]);
+            CHECK(biref_spectrum_expansion(sp, &st, NULL, &x[M_EXPANSION]) == BIREF_OK);
+            CHECK(biref_spectrum_expansion(sp, &st, &o8, &x[M_EXPANSION8]) == BIREF_OK);
+            biref_spectrum_numeric(n32, &st, &x[M_NUMERIC32]);
+            biref_spectrum_numeric(gt, &st, &x[M_GT]);
+            for (int m = 0; m < N_M; m++) {
+                double v = violation(&x[m]);
+                worst[kind][m] = fmax(worst[kind][m], v);
+                if (!(v <= 1e-6) && test_failures < 20)
+                    fprintf(stderr, "%s, %s: violation %.3g: eta_o %.4g eta_e %.4g axis (%.4g %.4g %.4g) d %.4g nm eta_i %.4g theta %.4f deg\n",
+                            KIND_NAMES[kind], NAMES[m], v, s.eta_o, s.eta_e, s.axis[0], s.axis[1], s.axis[2],
+                            s.thickness_nm, s.eta_i, theta * 180 / M_PI);
+                CHECK(v <= 1e-6);
+            }
+            /* Any light and analyzer: the detected intensity of unit incident light lies in [0, 1]. */
+            double S[4], xyz[3];
+            double complex C[2][2], P[2][2];
+            test_random_stokes(&rng, S);
+            CHECK(biref_stokes_to_coherency(S, C) == BIREF_OK);
+            if (t % 2)
+                biref_analyzer_linear(test_uniform(&rng, 0, M_PI), P);
+            else
+                biref_analyzer_circular(t % 4 ? 1 : -1, P);
+            for (int which = 0; which < 2; which++) {
+                CHECK(biref_spectrum_expansion_polarized(sp, &st, which, (const double complex(*)[2])C,
+                                                         (const double complex(*)[2])P, NULL, xyz, NULL) == BIREF_OK);
+                for (int j = 0; j < 3; j++) {
+                    worst_polarized = fmax(worst_polarized, fmax(-xyz[j], xyz[j] - 1));
+                    CHECK(xyz[j] >= -1e-6 && xyz[j] <= 1 + 1e-6);
+                }
+            }
+            /* Where the fast methods switch to the exact integral, both agree with the ground
+             * truth (alias-free there: short optical paths). */
+            if (biref_coherent_plan(sp, &st)) {
+                coherent_count++;
+                de_coherent[0] = fmax(de_coherent[0], worst_de(&x[M_ANALYTIC], &x[M_GT]));
+                de_coherent[1] = fmax(de_coherent[1], worst_de(&x[M_EXPANSION], &x[M_GT]));
+            }
+        }
+    printf("largest violation of 0 <= T, R <= 1, sum T + R <= 1 (per input and band):\n%-12s", "");
+    for (int m = 0; m < N_M; m++) printf(" %18s", NAMES[m]);
+    printf("\n");
+    for (int kind = 0; kind < N_KINDS; kind++) {
+        printf("%-12s", KIND_NAMES[kind]);
+        for (int m = 0; m < N_M; m++) printf(" %18.3g", worst[kind][m]);
+        printf("\n");
+    }
+    printf("expansion, random Stokes input and analyzer: largest violation of 0 <= I <= 1: %.3g\n", worst_polarized);
+    printf("coherent regime (%d of %d slabs, %d with evanescent modes): dE00 vs ground truth, analytic %.3g, "
+           "expansion %.3g\n",
+           coherent_count, N_KINDS * per_kind, evanescent_count, de_coherent[0], de_coherent[1]);
+    CHECK(coherent_count > 0 && evanescent_count > 0);
+    CHECK(de_coherent[0] <= 0.05 && de_coherent[1] <= 0.05);
+
+    biref_numeric_plan_destroy(n32);
+    biref_numeric_plan_destroy(gt);
+    biref_spectral_destroy(sp);
+    return test_report("test_physical_bounds");
+}

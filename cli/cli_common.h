@@ -6,6 +6,7 @@
 #include <stdio.h>
 
 #include "biref/biref.h"
+#include "cli_progress.h"
 
 /* Exit codes: 0 success, 1 runtime failure (I/O, numerics), 2 bad usage or bad input. */
 enum { CLI_EXIT_OK = 0, CLI_EXIT_FAIL = 1, CLI_EXIT_USAGE = 2 };

@@ -264,11 +264,14 @@ static int compute(const spectrum_args *a, spectrum_result *res)
 
     biref_spectral *sp = NULL;
     s = biref_spectral_create(&a->cfg, &sp);
-    /* The range passed its own checks, so INVALID here means the CMFs vanish on the band. */
-    if (s == BIREF_ERR_INVALID)
-        return cli_error(CMD, "--range-nm: the colour-matching functions are zero on %g-%g nm", a->cfg.lambda_min_nm,
-                         a->cfg.lambda_max_nm),
+    /* The range passed its own checks, so INVALID here means a band the CMFs do not cover. */
+    if (s == BIREF_ERR_INVALID) {
+        double lo = 0, hi = 0;
+        (void)biref_cmf_domain(a->cfg.cmf, &lo, &hi);
+        return cli_error(CMD, "--range-nm: %g-%g nm is not covered by the %s colour-matching functions (%g-%g nm)",
+                         a->cfg.lambda_min_nm, a->cfg.lambda_max_nm, biref_cmf_kind_name(a->cfg.cmf), lo, hi),
                CLI_EXIT_USAGE;
+    }
     if (s != BIREF_OK) return cli_error(CMD, "spectral context: %s", biref_status_string(s)), CLI_EXIT_FAIL;
     biref_integrator_options io;
     biref_integrator_options_default(&io);

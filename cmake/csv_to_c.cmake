@@ -12,6 +12,6 @@ foreach(line ${lines})
   math(EXPR count "${count} + 1")
 endforeach()
 file(WRITE ${OUT} "/* Generated from data/cie1931_2deg_xyz_1nm.csv by cmake/csv_to_c.cmake. Do not edit. */\n"
-  "#include \"spectral/cie1931_table.h\"\n"
+  "#include \"color/cie1931_table.h\"\n"
   "const int biref_cie1931_rows = ${count};\n"
   "const double biref_cie1931_table[][4] = {\n${body}};\n")

@@ -6,7 +6,7 @@ pkgs=(build-essential cmake pkg-config libpng-dev libcjson-dev liblapacke-dev li
       plplot-driver-cairo libqhull-dev
       libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri)
 # Python bindings and their tests, with Debian's own /usr/bin/python3.
-pkgs+=(python3-numpy python3-cffi python3-pytest)
+pkgs+=(python3-numpy python3-cffi python3-pytest python3-pip python3-setuptools)
 # The WebGL2 viewer's test: headless Chromium driven by /usr/bin/python3, the GLSL reference compiler.
 pkgs+=(chromium glslang-tools python3)
 missing=()

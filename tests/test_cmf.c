@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "biref/color.h"
-#include "spectral/cie1931_table.h"
+#include "color/cie1931_table.h"
 #include "test_util.h"
 
 /* Brute-force midpoint sum of cmf_j (or of the band-normalised Λ_j when

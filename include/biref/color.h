@@ -59,6 +59,12 @@ BIREF_API const char *biref_cmf_kind_name(biref_cmf_kind kind);
  * lmin >= lmax. Integrals may be 0 (a range outside the table). */
 BIREF_API biref_status biref_cmf_band_integrals(biref_cmf_kind kind, double lmin, double lmax, double integral[3]);
 
+/* The wavelengths the colour-matching data covers: the CIE 1931 table 380-780 nm; the Wyman fit
+ * 360-830 nm (the CIE's full range; the fit is a fit of data on it). A spectral context
+ * (biref_spectral_create) integrates only within this domain. BIREF_ERR_INVALID for an unknown
+ * kind or NULL pointers. */
+BIREF_API biref_status biref_cmf_domain(biref_cmf_kind kind, double *lmin_nm, double *lmax_nm);
+
 /* Band-normalised sensitivity functions Λ_j (paper §5.1): a small value type,
  * fill it with biref_cmf_band_init and share it freely between threads. */
 typedef struct {

@@ -174,28 +174,6 @@ BIREF_API biref_status biref_png_read_rgb8(const char *path, int *width, int *he
  * bottom to top as the format requires), atomically like biref_png_write_rgb8. */
 BIREF_API biref_status biref_pfm_write(const char *path, int width, int height, const float *rgb, char *msg, size_t msg_len);
 
-/* ------------------------------------------------------------------------ */
-/* Progress bar                                                              */
-/* ------------------------------------------------------------------------ */
-
-/* A textual progress bar with ETA, redrawn at most every 0.1 s on f (normally stderr).
- * Usable directly as a biref_progress_fn (pass the bar as user). enabled = 0 makes every
- * call a no-op. */
-typedef struct {
-    FILE *f;
-    int enabled;
-    double t_start, t_last;
-    int drawn;
-    char label[32];
-} biref_progress_bar;
-
-BIREF_API void biref_progress_bar_init(biref_progress_bar *bar, FILE *f, int enabled, const char *label);
-BIREF_API void biref_progress_bar_update(void *bar, int done, int total);
-BIREF_API void biref_progress_bar_finish(biref_progress_bar *bar);
-
-/* Monotonic wall clock in seconds. */
-BIREF_API double biref_wall_seconds(void);
-
 #ifdef __cplusplus
 }
 #endif

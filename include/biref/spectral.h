@@ -26,7 +26,9 @@ BIREF_API void biref_spectral_config_default(biref_spectral_config *cfg);
 
 typedef struct biref_spectral biref_spectral;
 
-/* BIREF_ERR_INVALID for an unknown cmf, non-finite or inverted range (min >= max, min <= 0). */
+/* BIREF_ERR_INVALID for an unknown cmf, a non-finite or inverted range (min >= max, min <= 0),
+ * a range outside the colour-matching data (biref_cmf_domain) or one where a band integrates to
+ * zero. */
 BIREF_API biref_status biref_spectral_create(const biref_spectral_config *cfg, biref_spectral **out);
 BIREF_API void biref_spectral_destroy(biref_spectral *sp);
 BIREF_API const biref_cmf_band *biref_spectral_band(const biref_spectral *sp);

@@ -67,7 +67,7 @@ static void emitv(biref_gl_uniform_fn fn, void *user, const char *name, int comp
 
 void biref_gl_scene_uniforms(const biref_scene *scene, const biref_spectral *sp, biref_gl_uniform_fn fn, void *user)
 {
-    /* Camera: as render_camera_init. */
+    /* Camera: as biref_render_camera_init. */
     const biref_camera *cam = &scene->camera;
     double f[3], r[3], u[3];
     v3_sub(cam->look_at, cam->position, f);
@@ -115,7 +115,7 @@ void biref_gl_scene_uniforms(const biref_scene *scene, const biref_spectral *sp,
     EMIT_ARRAY("u_panel_half", 2, np, (v_[0] = 0.5 * P[i].size[0], v_[1] = 0.5 * P[i].size[1]));
     EMIT_ARRAY("u_panel_radiance", 3, np, biref_linear_srgb_to_xyz(P[i].radiance, v_));
 
-    /* Environment: as render_env_init. */
+    /* Environment: as biref_render_env_init. */
     const biref_environment *env = &scene->env;
     double e1[3] = {1, 0, 0}, e2[3], a[3] = {1, 0, 0}, xyz[3];
     if (fabs(env->up[0]) > 0.9) v3_set(a, 0, 0, 1);

@@ -6,17 +6,6 @@
 #include "biref/optics.h"
 #include "optics/validate.h"
 
-biref_status biref_fail(char *msg, size_t msg_len, const char *fmt, ...)
-{
-    if (msg && msg_len) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(msg, msg_len, fmt, ap);
-        va_end(ap);
-    }
-    return BIREF_ERR_INVALID;
-}
-
 biref_status biref_check_index(const char *name, double eta, char *msg, size_t msg_len)
 {
     if (!isfinite(eta)) return biref_fail(msg, msg_len, "%s must be a finite number (got %g)", name, eta);

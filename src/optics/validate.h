@@ -5,8 +5,8 @@
 #include <stddef.h>
 
 #include "biref/common.h"
+#include "error.h" /* biref_fail */
 
-biref_status biref_fail(char *msg, size_t msg_len, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 biref_status biref_check_index(const char *name, double eta, char *msg, size_t msg_len);
 biref_status biref_check_axis(const double axis[3], char *msg, size_t msg_len);
 biref_status biref_check_lambda(double lambda_nm, char *msg, size_t msg_len);

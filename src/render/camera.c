@@ -4,7 +4,7 @@
 #include "render/render_internal.h"
 #include "render/vec3.h"
 
-void render_camera_init(render_camera *c, const biref_camera *cam)
+void biref_render_camera_init(render_camera *c, const biref_camera *cam)
 {
     double f[3], r[3], u[3];
     v3_sub(cam->look_at, cam->position, f);
@@ -26,7 +26,7 @@ void render_camera_init(render_camera *c, const biref_camera *cam)
     c->tan_half_h = c->tan_half_v * (double)cam->width / (double)cam->height;
 }
 
-void render_camera_ray(const render_camera *c, int x, int y, double dir[3])
+void biref_render_camera_ray(const render_camera *c, int x, int y, double dir[3])
 {
     double sx = (2.0 * (x + 0.5) / c->width - 1.0) * c->tan_half_h;
     double sy = (1.0 - 2.0 * (y + 0.5) / c->height) * c->tan_half_v;

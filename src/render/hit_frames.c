@@ -11,7 +11,7 @@
 /* biref_slab_prepare needs theta < pi/2; a ray grazing the slab is clamped just below. */
 #define THETA_MAX (0.5 * M_PI - 1e-7)
 
-void render_hit_frames(const double normal[3], const double tangent[3], const double axis_world[3],
+void biref_render_hit_frames(const double normal[3], const double tangent[3], const double axis_world[3],
                        const biref_slab *base, const double dir[3], biref_hit_frames *f)
 {
     double dn = v3_dot(dir, normal);
@@ -49,7 +49,7 @@ biref_status biref_hit_frames_make(const biref_surface *s, const double view_dir
     for (int k = 0; k < 3; k++) a[k] = s->axis[0] * t[k] + s->axis[1] * n[k] + s->axis[2] * b[k];
     if (!(v3_normalize(a, a) > 0.0)) return BIREF_ERR_INVALID;
     biref_slab base = {s->eta_o, s->eta_e, {0, 0, 0}, s->thickness_nm, s->eta_i};
-    render_hit_frames(n, t, a, &base, v, out);
+    biref_render_hit_frames(n, t, a, &base, v, out);
     return BIREF_OK;
 }
 
@@ -101,5 +101,5 @@ biref_status biref_shade_hit(const biref_shader *sh, const biref_surface *s, con
     if (st) return st;
     st = biref_slab_check(&f->slab, NULL, 0);
     if (st) return st;
-    return render_shade_hit(sh->r, f, T_xyz, R_xyz) ? BIREF_ERR_ILLCOND : BIREF_OK;
+    return biref_render_shade_hit(sh->r, f, T_xyz, R_xyz) ? BIREF_ERR_ILLCOND : BIREF_OK;
 }

@@ -12,6 +12,7 @@
 
 #include <png.h>
 
+#include "error.h"
 #include "biref/render.h"
 #include "io/outfile.h"
 
@@ -34,8 +35,7 @@ void biref_xyz_image_to_linear_srgb(const float *xyz, size_t n_pixels, float *rg
 
 static biref_status io_fail(char *msg, size_t msg_len, const char *path, const char *what, const char *why)
 {
-    if (msg && msg_len) snprintf(msg, msg_len, "%s: %s: %s", path, what, why);
-    return BIREF_ERR_IO;
+    return biref_fail_status(BIREF_ERR_IO, msg, msg_len, "%s: %s: %s", path, what, why);
 }
 
 biref_status biref_png_write_rgb8(const char *path, int width, int height, const unsigned char *rgb, char *msg,

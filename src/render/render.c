@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "error.h"
 #include "render/render_internal.h"
 #include "render/vec3.h"
 
@@ -16,40 +17,34 @@ void biref_render_options_default(biref_render_options *opt)
     biref_expansion_opts_default(&opt->expansion);
 }
 
-static biref_status set_msg(char *msg, size_t msg_len, biref_status s, const char *text)
-{
-    if (msg && msg_len) snprintf(msg, msg_len, "%s", text);
-    return s;
-}
-
 biref_status biref_renderer_create(const biref_scene *scene, const biref_render_options *opt, biref_renderer **out,
                                    char *msg, size_t msg_len)
 {
     if (!out) return BIREF_ERR_INVALID;
     *out = NULL;
-    if (!scene || !opt) return set_msg(msg, msg_len, BIREF_ERR_INVALID, "no scene or options");
+    if (!scene || !opt) return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "no scene or options");
     biref_status s = biref_scene_validate(scene, msg, msg_len);
     if (s) return s;
     if (opt->method != BIREF_METHOD_ANALYTIC && opt->method != BIREF_METHOD_NUMERIC &&
         opt->method != BIREF_METHOD_GROUND_TRUTH && opt->method != BIREF_METHOD_EXPANSION)
-        return set_msg(msg, msg_len, BIREF_ERR_INVALID, "unknown spectral method");
+        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "unknown spectral method");
     if (opt->method == BIREF_METHOD_NUMERIC && (opt->samples < 1 || opt->samples > BIREF_GROUND_TRUTH_SAMPLES * 4))
-        return set_msg(msg, msg_len, BIREF_ERR_INVALID, "samples must be between 1 and 65536");
+        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "samples must be between 1 and 65536");
     if (opt->threads < 0 || opt->threads > 1024)
-        return set_msg(msg, msg_len, BIREF_ERR_INVALID, "threads must be between 0 and 1024");
+        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "threads must be between 0 and 1024");
     int world_fixed = scene->polarization.type == BIREF_POL_LINEAR || scene->filter.type == BIREF_FILTER_LINEAR;
     if (world_fixed && opt->method == BIREF_METHOD_ANALYTIC)
-        return set_msg(msg, msg_len, BIREF_ERR_INVALID,
+        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len,
                        "world-fixed polarizers need --method expansion, numeric or ground-truth (the paper's method "
                        "handles s/p only)");
     if (opt->method == BIREF_METHOD_EXPANSION && opt->expansion.order < 0 &&
         !(opt->expansion.tolerance > 0.0 && opt->expansion.tolerance < 1.0))
-        return set_msg(msg, msg_len, BIREF_ERR_INVALID, "expansion tolerance must be in (0, 1)");
+        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "expansion tolerance must be in (0, 1)");
 
     biref_renderer *r = calloc(1, sizeof *r);
-    if (!r) return set_msg(msg, msg_len, BIREF_ERR_NOMEM, "out of memory");
+    if (!r) return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
     r->opt = *opt;
-    render_camera_init(&r->cam, &scene->camera);
+    biref_render_camera_init(&r->cam, &scene->camera);
     r->exposure = scene->camera.exposure;
     r->n_slabs = scene->n_slabs;
     for (int i = 0; i < scene->n_slabs; i++) {
@@ -83,7 +78,7 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
         p->half_h = 0.5 * in->size[1];
         biref_linear_srgb_to_xyz(in->radiance, p->radiance_xyz);
     }
-    render_env_init(&r->env, &scene->env);
+    biref_render_env_init(&r->env, &scene->env);
     r->pol = scene->polarization;
     r->filter = scene->filter;
     r->world_fixed = world_fixed;
@@ -108,7 +103,7 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
         char text[120];
         snprintf(text, sizeof text, "cannot set up the spectral integration: %s", biref_status_string(s));
         biref_renderer_destroy(r);
-        return set_msg(msg, msg_len, s, text);
+        return biref_fail_status(s, msg, msg_len, "%s", text);
     }
     *out = r;
     return BIREF_OK;
@@ -144,8 +139,8 @@ biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_e
         for (int x = 0; x < W; x++) {
             double dir[3], c[3];
             int fb;
-            render_camera_ray(&r->cam, x, y, dir);
-            slab_pixels += render_shade_pixel(r, dir, c, &fb);
+            biref_render_camera_ray(&r->cam, x, y, dir);
+            slab_pixels += biref_render_shade_pixel(r, dir, c, &fb);
             fallbacks += fb;
             for (int i = 0; i < 3; i++) {
                 double v = c[i] * r->exposure;

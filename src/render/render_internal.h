@@ -56,26 +56,26 @@ struct biref_renderer {
 };
 
 /* camera.c */
-void render_camera_init(render_camera *c, const biref_camera *cam);
+void biref_render_camera_init(render_camera *c, const biref_camera *cam);
 /* Unit direction through the centre of pixel (x, y), y = 0 at the top. */
-void render_camera_ray(const render_camera *c, int x, int y, double dir[3]);
+void biref_render_camera_ray(const render_camera *c, int x, int y, double dir[3]);
 
 /* shade.c */
-void render_env_init(render_env *e, const biref_environment *env);
+void biref_render_env_init(render_env *e, const biref_environment *env);
 /* Radiance (XYZ) arriving along the ray from `from` in direction dir: the nearest panel in
  * front of `from`, else the environment. */
-void render_radiance(const biref_renderer *r, const double from[3], const double dir[3], double xyz[3]);
+void biref_render_radiance(const biref_renderer *r, const double from[3], const double dir[3], double xyz[3]);
 /* The whole pixel: nearest slab hit, transmission and reflection, or the filtered
  * background. Returns 1 if a slab was hit, and sets *fallback when a slab evaluation
  * failed and the fallback was used. */
-int render_shade_pixel(const biref_renderer *r, const double dir[3], double xyz[3], int *fallback);
+int biref_render_shade_pixel(const biref_renderer *r, const double dir[3], double xyz[3], int *fallback);
 /* The slab's two evaluations at one hit (transmission from behind, reflection from the mirror
  * direction) in the hit's frames; non-zero when either fails (outputs then undefined). */
-int render_shade_hit(const biref_renderer *r, const biref_hit_frames *f, double T_xyz[3], double R_xyz[3]);
+int biref_render_shade_hit(const biref_renderer *r, const biref_hit_frames *f, double T_xyz[3], double R_xyz[3]);
 
 /* hit_frames.c: the paper's frames of the unit view ray dir at a hit on a slab with unit normal,
  * unit tangent and unit world optic axis; base gives the slab's constants. */
-void render_hit_frames(const double normal[3], const double tangent[3], const double axis_world[3],
+void biref_render_hit_frames(const double normal[3], const double tangent[3], const double axis_world[3],
                        const biref_slab *base, const double dir[3], biref_hit_frames *f);
 
 #endif

@@ -12,6 +12,7 @@
 #include <cjson/cJSON.h>
 
 #include "biref/render.h"
+#include "error.h"
 #include "render/vec3.h"
 
 /* A JSON path such as "slabs[2].normal" names every error. 96 bytes hold the deepest path. */
@@ -43,28 +44,13 @@ static field_path path_index(const char *parent, int i)
     return path_join(parent, idx, "");
 }
 
-static biref_status fail(char *msg, size_t msg_len, const char *field, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
-static biref_status fail(char *msg, size_t msg_len, const char *field, const char *fmt, ...)
-{
-    if (msg && msg_len) {
-        char reason[200];
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(reason, sizeof reason, fmt, ap);
-        va_end(ap);
-        snprintf(msg, msg_len, "%s: %s", field, reason);
-    }
-    return BIREF_ERR_INVALID;
-}
-
 /* Parser state: the error buffer travels with it so helpers stay short. */
 typedef struct {
     char *msg;
     size_t msg_len;
 } pctx;
 
-#define FAIL(ctx, field, ...) fail((ctx)->msg, (ctx)->msg_len, (field), __VA_ARGS__)
+#define FAIL(ctx, field, ...) biref_fail_field((ctx)->msg, (ctx)->msg_len, (field), __VA_ARGS__)
 
 static const char *type_name(const cJSON *v)
 {

@@ -11,7 +11,7 @@
 /* Rays leave surfaces from exactly on them; hits closer than this are the surface itself. */
 #define RAY_EPS 1e-9
 
-void render_env_init(render_env *e, const biref_environment *env)
+void biref_render_env_init(render_env *e, const biref_environment *env)
 {
     e->type = env->type;
     memcpy(e->up, env->up, sizeof e->up);
@@ -53,7 +53,7 @@ static void env_radiance(const render_env *e, const double d[3], double xyz[3])
     mix3(e->horizon, ground, g, xyz);
 }
 
-void render_radiance(const biref_renderer *r, const double from[3], const double dir[3], double xyz[3])
+void biref_render_radiance(const biref_renderer *r, const double from[3], const double dir[3], double xyz[3])
 {
     double best = INFINITY;
     const render_panel *hit = NULL;
@@ -178,7 +178,7 @@ static double background_factor(const biref_renderer *r, const double k[3], cons
     return passthrough(C, P);
 }
 
-int render_shade_hit(const biref_renderer *r, const biref_hit_frames *f, double T_xyz[3], double R_xyz[3])
+int biref_render_shade_hit(const biref_renderer *r, const biref_hit_frames *f, double T_xyz[3], double R_xyz[3])
 {
     /* One optics set-up per hit: the reflection frame is the transmission frame rotated by 180
      * degrees about z, i.e. the same slab lit from the other face (biref_slab_state_flip). */
@@ -194,7 +194,7 @@ int render_shade_hit(const biref_renderer *r, const biref_hit_frames *f, double 
            eval_slab(r, &stR, f->x_R, k_refl_in, f->k_view, BIREF_REFLECTION, R_xyz);
 }
 
-int render_shade_pixel(const biref_renderer *r, const double dir[3], double xyz[3], int *fallback)
+int biref_render_shade_pixel(const biref_renderer *r, const double dir[3], double xyz[3], int *fallback)
 {
     *fallback = 0;
     const double *o = r->cam.origin;
@@ -220,7 +220,7 @@ int render_shade_pixel(const biref_renderer *r, const double dir[3], double xyz[
     v3_scale(dir, -1.0, k_view);
     if (!hit) {
         double L[3];
-        render_radiance(r, o, dir, L);
+        biref_render_radiance(r, o, dir, L);
         double f = background_factor(r, k_view, &r->slabs[0]);
         v3_scale(L, f, xyz);
         return 0;
@@ -229,12 +229,12 @@ int render_shade_pixel(const biref_renderer *r, const double dir[3], double xyz[
     double hp[3];
     v3_axpy(o, best, dir, hp);
     biref_hit_frames fr;
-    render_hit_frames(hit->normal, hit->tangent, hit->axis_world, &hit->base, dir, &fr);
+    biref_render_hit_frames(hit->normal, hit->tangent, hit->axis_world, &hit->base, dir, &fr);
     const double *xR = fr.x_R, *mirror = fr.mirror;
     double k_refl_in[3];
     v3_scale(mirror, -1.0, k_refl_in);
     double tT[3], tR[3];
-    if (render_shade_hit(r, &fr, tT, tR)) {
+    if (biref_render_shade_hit(r, &fr, tT, tR)) {
         /* A failed evaluation (grazing-angle breakdown) must not put a NaN in the image:
          * treat the slab as a perfect mirror seen through the filter. */
         *fallback = 1;
@@ -248,8 +248,8 @@ int render_shade_pixel(const biref_renderer *r, const double dir[3], double xyz[
         v3_set(tR, f, f, f);
     }
     double Lb[3], Lf[3];
-    render_radiance(r, hp, dir, Lb);
-    render_radiance(r, hp, mirror, Lf);
+    biref_render_radiance(r, hp, dir, Lb);
+    biref_render_radiance(r, hp, mirror, Lf);
     /* Band-wise products: exact for grey light, an approximation for coloured light. */
     for (int i = 0; i < 3; i++) xyz[i] = tT[i] * Lb[i] + tR[i] * Lf[i];
     return 1;

@@ -744,6 +744,9 @@ biref_status biref_expansion_series(const biref_spectral *sp, const biref_slab_s
     return BIREF_OK;
 }
 
+static biref_status expansion_pairs(const biref_spectral *sp, const biref_slab_state *st,
+                                    const biref_expansion_opts *opts, biref_spectrum *out);
+
 static int is_diagonal(const double complex M[2][2]) { return M[0][1] == 0.0 && M[1][0] == 0.0; }
 
 /* Thin slabs and evanescent legs that couple the faces: the path series converges too slowly
@@ -754,9 +757,9 @@ static int is_diagonal(const double complex M[2][2]) { return M[0][1] == 0.0 && 
  * diagonal) the result is that of biref_spectrum_expansion, kept physical with both directions
  * (biref_physical_limit); for other polarizers it is kept >= 0 by moving it towards the
  * incoherent energy of the paths. */
-biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
-                                                const double complex C[2][2], const double complex P[2][2],
-                                                const biref_expansion_opts *opts, double xyz[3], int *order_used)
+static biref_status expansion_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
+                                       const double complex C[2][2], const double complex P[2][2],
+                                       const biref_expansion_opts *opts, double xyz[3], int *order_used)
 {
     if (!sp || !st || !C || !xyz || (which != BIREF_TRANSMISSION && which != BIREF_REFLECTION)) return BIREF_ERR_INVALID;
     const biref_numeric_plan *coherent = biref_coherent_plan(sp, st);
@@ -768,7 +771,7 @@ biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const 
     }
     if (is_diagonal(C) && (!P || is_diagonal(P))) {
         biref_spectrum x;
-        biref_status s = biref_spectrum_expansion(sp, st, opts, &x);
+        biref_status s = expansion_pairs(sp, st, opts, &x);
         if (s != BIREF_OK) return s;
         if (order_used) s = biref_expansion_series_polarized(sp, st, which, C, P, opts, xyz, order_used);
         if (s != BIREF_OK) return s;
@@ -808,8 +811,8 @@ biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const 
     return BIREF_OK;
 }
 
-biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab_state *st,
-                                      const biref_expansion_opts *opts, biref_spectrum *out)
+static biref_status expansion_pairs(const biref_spectral *sp, const biref_slab_state *st,
+                                    const biref_expansion_opts *opts, biref_spectrum *out)
 {
     if (!sp || !st || !out) return BIREF_ERR_INVALID;
     const biref_numeric_plan *coherent = biref_coherent_plan(sp, st);
@@ -829,5 +832,27 @@ biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab
     }
     if (opts && !(opts->tolerance > 0.0) && opts->order < 0) return BIREF_ERR_INVALID;
     biref_spectrum_numeric(coherent, st, out);
+    return BIREF_OK;
+}
+
+/* A result that is not finite is an error (BIREF_ERR_ILLCOND), never an output. */
+static int finite3(const double v[3]) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
+
+biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
+                                                const double complex C[2][2], const double complex P[2][2],
+                                                const biref_expansion_opts *opts, double xyz[3], int *order_used)
+{
+    biref_status s = expansion_polarized(sp, st, which, C, P, opts, xyz, order_used);
+    return s == BIREF_OK && !finite3(xyz) ? BIREF_ERR_ILLCOND : s;
+}
+
+biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab_state *st,
+                                      const biref_expansion_opts *opts, biref_spectrum *out)
+{
+    biref_status s = expansion_pairs(sp, st, opts, out);
+    if (s != BIREF_OK) return s;
+    for (int i = 0; i < 2; i++)
+        for (int o = 0; o < 2; o++)
+            if (!finite3(out->T[i][o]) || !finite3(out->R[i][o])) return BIREF_ERR_ILLCOND;
     return BIREF_OK;
 }

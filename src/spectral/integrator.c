@@ -162,11 +162,18 @@ static biref_status scalar_batch(const biref_integrator *it, const biref_slab_st
 
 biref_status biref_integrate_spectrum(const biref_integrator *it, const biref_slab_state *st, biref_spectrum *out)
 {
+    biref_status s = BIREF_OK;
     switch (it->method) {
-    case BIREF_METHOD_ANALYTIC: biref_spectrum_analytic(it->sp, st, out); return BIREF_OK;
-    case BIREF_METHOD_EXPANSION: return biref_spectrum_expansion(it->sp, st, &it->xopts, out);
-    default: biref_spectrum_numeric(it->plan, st, out); return BIREF_OK;
+    case BIREF_METHOD_ANALYTIC: biref_spectrum_analytic(it->sp, st, out); break;
+    case BIREF_METHOD_EXPANSION: s = biref_spectrum_expansion(it->sp, st, &it->xopts, out); break;
+    default: biref_spectrum_numeric(it->plan, st, out); break;
     }
+    if (s != BIREF_OK) return s;
+    /* A result that is not finite is an error, never an output. */
+    for (int i = 0; i < 2; i++)
+        for (int o = 0; o < 2; o++)
+            if (!finite3(out->T[i][o]) || !finite3(out->R[i][o])) return BIREF_ERR_ILLCOND;
+    return BIREF_OK;
 }
 
 biref_status biref_integrate_batch(const biref_integrator *it, const biref_slab_state *states, size_t n,

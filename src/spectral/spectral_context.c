@@ -8,8 +8,8 @@
 #include "spectral/spectral_internal.h"
 
 /* Table resolution. Hermite interpolation of the demodulated F has error ~ (2 pi B h)^4 / 384
- * with B = half the band width in 1/lambda (<= 6e-4 / nm for 380-700 nm): about 3e-6 at
- * h = 50 nm. Beyond D_MAX the endpoint asymptotics are accurate to ~1e-5 (docs/PHYSICS.md). */
+ * with B = half the band width in 1/lambda (6e-4 / nm for 380-700 nm, at most 8e-4 / nm for the
+ * widest band allowed, 360-830 nm): 3e-6 and 1e-5 at h = 50 nm. Beyond D_MAX the endpoint asymptotics are accurate to ~1e-5 (docs/PHYSICS.md). */
 #define TABLE_STEP_NM 50.0
 #define TABLE_D_MAX_NM 1.0e5
 /* Quadrature step for building the table: midpoint rule, whose error for e^{i phi} is the
@@ -107,6 +107,13 @@ biref_status biref_spectral_create(const biref_spectral_config *cfg_in, biref_sp
         biref_spectral_config_default(&cfg);
     if (!isfinite(cfg.lambda_min_nm) || !isfinite(cfg.lambda_max_nm) || cfg.lambda_min_nm <= 0.0 ||
         cfg.lambda_max_nm <= cfg.lambda_min_nm)
+        return BIREF_ERR_INVALID;
+    /* Only where the colour-matching data is defined: the table resolution and the far limit
+     * below assume a visible band (half-width in 1/lambda <= 8e-4 / nm), and every sample count
+     * below is then small (<= 9400 build samples). */
+    double dom_lo, dom_hi;
+    if (biref_cmf_domain(cfg.cmf, &dom_lo, &dom_hi) != BIREF_OK || cfg.lambda_min_nm < dom_lo ||
+        cfg.lambda_max_nm > dom_hi)
         return BIREF_ERR_INVALID;
     biref_spectral *sp = calloc(1, sizeof *sp);
     if (!sp) return BIREF_ERR_NOMEM;

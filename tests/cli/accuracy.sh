@@ -102,6 +102,7 @@ expect_error "sweep gives eps_e <= 0" accuracy "${tiny[@]}" --sweep-delta-eps -5
 expect_error "sweep garbage" accuracy "${tiny[@]}" --sweep-delta-eps 0.1,,0.2
 expect_error "unknown cmf" accuracy "${tiny[@]}" --cmf nope
 expect_error "inverted range" accuracy "${tiny[@]}" --range-nm 700,380
+expect_error "range beyond the colour-matching data" accuracy "${tiny[@]}" --range-nm 1,100000
 expect_error "missing materials file" accuracy "${tiny[@]}" --materials "$tmpdir/none.json"
 echo '{"materials": [' >"$tmpdir/bad.json"
 expect_error "materials file not JSON" accuracy "${tiny[@]}" --materials "$tmpdir/bad.json"

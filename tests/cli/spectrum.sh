@@ -59,6 +59,14 @@ expect_error "zero range start" spectrum "${slab[@]}" --range-nm 0,700
 expect_error "nan range" spectrum "${slab[@]}" --range-nm nan,700
 expect_error "short range" spectrum "${slab[@]}" --range-nm 380
 expect_error "range outside the cmf" spectrum "${slab[@]}" --range-nm 800,900
+# Bands beyond the colour-matching data are refused, not integrated into nonsense.
+expect_error "range to 1e9 nm" spectrum "${slab[@]}" --range-nm 380,1e9
+expect_error "range 1-100000 nm" spectrum "${slab[@]}" --range-nm 1,100000
+expect_error "range from 10 nm" spectrum "${slab[@]}" --range-nm 10,830
+expect_error "range 1e-300-1e300, numeric" spectrum "${slab[@]}" --method numeric --range-nm 1e-300,1e300
+expect_error "range beyond the wyman fit" spectrum "${slab[@]}" --cmf wyman2013 --range-nm 350,700
+expect_ok "whole cie1931 table" spectrum "${slab[@]}" --range-nm 380,780
+expect_ok "whole wyman range" spectrum "${slab[@]}" --cmf wyman2013 --range-nm 360,830
 expect_error "unknown cmf" spectrum "${slab[@]}" --cmf cie1964
 expect_error "unknown method" spectrum "${slab[@]}" --method magic
 expect_error "unknown polarization" spectrum "${slab[@]}" --polarization circular

@@ -78,6 +78,17 @@ assert not bad, (t, ref)
 print('ok: installed Python package agrees with biref slab --json')
 "
 
+# pip install ./python (offline here: no index, dependencies already present), then the package
+# finds the installed library through pkg-config alone.
+/usr/bin/python3 -m pip install -q --no-build-isolation --no-deps --no-index --disable-pip-version-check \
+  --target "$tmp/pip" "$src/python" 2>/dev/null
+env -u BIREF_LIBRARY -u BIREF_CDEF PYTHONPATH="$tmp/pip" /usr/bin/python3 -c "
+import biref
+assert biref.library_path.startswith('$libdir'), biref.library_path
+assert abs(biref.slab(eta_o=1.5, eta_e=1.6, axis=(0, 1, 0), thickness_um=1)['energy']['s'] - 1) < 1e-12
+print('ok: pip install ./python works against the installed library')
+"
+
 # The README's library section as written: its C program, compiled by its own command line, and
 # its Python one-liner.
 /usr/bin/python3 - "$src/README.md" <<'PY'

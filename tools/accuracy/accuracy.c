@@ -104,10 +104,13 @@ static int make_plans(const acc_run *run, const acc_options *o, biref_spectral *
                       biref_integrator *its[NINTEGRATORS], acc_plans *pl)
 {
     biref_status s = biref_spectral_create(&run->scfg, sp);
-    if (s == BIREF_ERR_INVALID)
-        return cli_error(ACC_CMD, "--range-nm: the colour-matching functions are zero on %g-%g nm",
-                         run->scfg.lambda_min_nm, run->scfg.lambda_max_nm),
+    if (s == BIREF_ERR_INVALID) {
+        double lo = 0, hi = 0;
+        (void)biref_cmf_domain(run->scfg.cmf, &lo, &hi);
+        return cli_error(ACC_CMD, "--range-nm: %g-%g nm is not covered by the %s colour-matching functions (%g-%g nm)",
+                         run->scfg.lambda_min_nm, run->scfg.lambda_max_nm, biref_cmf_kind_name(run->scfg.cmf), lo, hi),
                CLI_EXIT_USAGE;
+    }
     if (s != BIREF_OK) return cli_error(ACC_CMD, "spectral context: %s", biref_status_string(s)), CLI_EXIT_FAIL;
     biref_integrator_options io[NINTEGRATORS];
     for (int k = 0; k < NINTEGRATORS; k++) {

@@ -18,7 +18,7 @@
 #include <string.h>
 
 #include "biref/color.h"
-#include "spectral/cie1931_table.h"
+#include "color/cie1931_table.h"
 
 /* ---- CIE 1931 table ------------------------------------------------------ */
 
@@ -141,6 +141,16 @@ void biref_cmf_eval(biref_cmf_kind kind, double lambda_nm, double xyz[3])
     case BIREF_CMF_WYMAN2013: wss_eval(lambda_nm, xyz); return;
     }
     xyz[0] = xyz[1] = xyz[2] = 0.0;
+}
+
+biref_status biref_cmf_domain(biref_cmf_kind kind, double *lmin_nm, double *lmax_nm)
+{
+    if (!lmin_nm || !lmax_nm) return BIREF_ERR_INVALID;
+    switch (kind) {
+    case BIREF_CMF_CIE1931: *lmin_nm = table_first(), *lmax_nm = table_last(); return BIREF_OK;
+    case BIREF_CMF_WYMAN2013: *lmin_nm = 360.0, *lmax_nm = 830.0; return BIREF_OK;
+    }
+    return BIREF_ERR_INVALID;
 }
 
 biref_status biref_cmf_kind_from_name(const char *name, biref_cmf_kind *out)

@@ -4,7 +4,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "biref/render.h"
+#include "cli_progress.h"
 
 double biref_wall_seconds(void)
 {

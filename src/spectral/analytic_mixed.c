@@ -5,10 +5,10 @@
  * sum_out (X_T + X_R)), so both are computed here in one pass that shares what they share:
  * transmission's four round trips (up y, down x') are reflection's four order-1 paths (down x,
  * up y): one table look-up each instead of two. Look-ups beyond the table's far limit are
- * exactly 0 (docs/PHYSICS.md §4) and their terms, coefficients included, are skipped; the pair
- * coefficients are built from the products shared by all (input, output) pairs. Same terms as
- * analytic.c, summed in a different order; slabs in the coherent regime (coherent.c) go to
- * biref_analytic_terms. tests/test_analytic_mixed.c compares the two on random slabs. */
+ * exactly 0 (docs/PHYSICS.md §4) and their terms, coefficients included, are skipped (adding 0
+ * changes nothing). The remaining terms are analytic.c's, in its order and association, so the
+ * result is the same bit for bit (tests/test_analytic_mixed.c, test_integrator); slabs in the
+ * coherent regime (coherent.c) go to biref_analytic_terms. */
 #include <complex.h>
 #include <math.h>
 
@@ -152,19 +152,16 @@ static void paper_both(const biref_spectral *sp, const biref_slab_state *st, dou
                         (abs2(t01[i][0]) * ed[0][j] * abs2(r12[0][y]) + abs2(t01[i][1]) * ed[1][j] * abs2(r12[1][y])) *
                         eu[y][j];
         path_energies(u0, r10, ed, r12, eu, U);
-        /* The order-1 amplitudes factor as t01[i][x] * (r12[x][y] t10[y][o]). */
-        double complex inner[4][2];
-        for (int a = 0; a < 4; a++)
-            for (int o = 0; o < 2; o++) inner[a][o] = r12[a >> 1][a & 1] * t10[a & 1][o];
         for (int o = 0; o < 2; o++) {
             double complex desc[2][4];
             if (any_p1)
                 for (int y = 0; y < 2; y++)
-                    for (int a = 0; a < 4; a++) desc[y][a] = conj(t10[y][o]) * r10[y][a >> 1] * inner[a][o];
+                    for (int a = 0; a < 4; a++)
+                        desc[y][a] = conj(t10[y][o]) * r10[y][a >> 1] * r12[a >> 1][a & 1] * t10[a & 1][o];
             for (int i = 0; i < 2; i++) {
                 double h[3] = {0.0, 0.0, 0.0};
-                double complex a1[4];
-                for (int a = 0; a < 4; a++) a1[a] = t01[i][a >> 1] * inner[a][o];
+                double complex a1[4]; /* order-1 amplitudes without their phase */
+                for (int a = 0; a < 4; a++) a1[a] = t01[i][a >> 1] * r12[a >> 1][a & 1] * t10[a & 1][o];
                 for (int a = 0; a < 4; a++) {
                     if (!p1[a].zero) add_1(h, conj(r01[i][o]) * a1[a], &p1[a]);
                     for (int b = a + 1; b < 4; b++)

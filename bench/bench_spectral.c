@@ -28,7 +28,6 @@
 #include <string.h>
 
 #include "biref/biref.h"
-#include "spectral/spectral_internal.h"
 
 #include "bench_clock.h"
 

@@ -147,6 +147,7 @@ int pe_ext_write_png(const pe_ext *e, const pe_ext_ctx *c, const unsigned char *
 {
     char msg[512];
     const int W = c->io->width, H = c->io->height;
+    pe_ext_json(e, c->root);
     if (!e->key && !e->scale_bar) {
         if (biref_png_write_rgb8(c->out, W, H, rgb, msg, sizeof msg) != BIREF_OK)
             return cli_error(CMD, "%s", msg), CLI_EXIT_FAIL;

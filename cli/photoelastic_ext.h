@@ -70,6 +70,9 @@ int pe_ext_write(const pe_ext *e, const pe_ext_ctx *c);
 /* The PNG picture, with --key and --scale-bar drawn by cairo if asked; returns a CLI exit code. */
 int pe_ext_write_png(const pe_ext *e, const pe_ext_ctx *c, const unsigned char *rgb);
 
+/* Adds the node counts (rows, distinct nodes, triangles, boundary polygons) to a JSON report. */
+void pe_ext_json(const pe_ext *e, cJSON *root);
+
 int cmd_photoelastic_demodulate(int argc, char **argv);
 
 #endif

@@ -154,3 +154,15 @@ int pe_ext_nodes_field(pe_ext *e, biref_pe_field *f, double h)
     }
     return CLI_EXIT_OK;
 }
+
+void pe_ext_json(const pe_ext *e, cJSON *root)
+{
+    if (!root || !e->mesh) return;
+    biref_pe_mesh_info info;
+    biref_pe_mesh_get_info(e->mesh, &info);
+    cJSON *o = cJSON_AddObjectToObject(root, "nodes");
+    cJSON_AddNumberToObject(o, "rows", (double)info.rows);
+    cJSON_AddNumberToObject(o, "distinct", (double)info.nodes);
+    cJSON_AddNumberToObject(o, "triangles", (double)info.triangles);
+    cJSON_AddNumberToObject(o, "boundary_polygons", (double)info.loops);
+}

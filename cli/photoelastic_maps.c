@@ -189,6 +189,7 @@ static int write_phase_steps(const pe_ext *e, const pe_ext_ctx *c)
 
 int pe_ext_write(const pe_ext *e, const pe_ext_ctx *c)
 {
+    pe_ext_json(e, c->root);
     if (e->map >= 0 && !pe_has_ext(c->out, ".pfm") && !pe_has_ext(c->out, ".csv"))
         return cli_error(CMD, "--map: -o must end in .pfm or .csv, got '%s'", c->out), CLI_EXIT_USAGE;
     if (e->pfm && !pe_has_ext(c->out, ".pfm"))

@@ -45,7 +45,7 @@ BEGIN {
   for (side = -1; side <= 1; side += 2)
     for (rho = 0.4; rho <= rmax * 1.2; rho *= 1 + 0.08 * s0) {
       m = int(pi / (0.12 * s0)) + 1; off = rand()
-      for (i = 0; i <= 2 * m; i++) {
+      for (i = 0; i < 2 * m; i++) {
         t = pi * (i + off) / m; x = rho * cos(t); y = side * R + rho * sin(t)
         if (x * x + y * y < R * R * (1 - 1e-9)) emit(x, y)
       }

@@ -31,6 +31,15 @@ pe --preset beam --moment-Nmm 1500 --size 480 -o "$out/beam-circular-dark-white.
 pe --preset beam --moment-Nmm 1500 --size 480 --field light --light mono --lambda-nm 589 \
   -o "$out/beam-circular-light-589.png"
 
+# Stress from a finite-element node export: the example disk (scattered nodes, circular boundary),
+# with the colour key and a scale bar; the preset disk in white light with its Michel-Levy key.
+pe --stress-nodes "$here/disk_nodes.csv" --columns sxx=S11,syy=S22,txy=S12 --boundary "$here/disk_boundary.csv" \
+  "${S[@]}" --light mono --lambda-nm 589 --key --scale-bar -o "$out/disk-nodes-589-key.png"
+pe --preset disk "${S[@]}" --key --scale-bar -o "$out/disk-circular-dark-white-key.png"
+
+# Phase stepping: the six images of the disk at 589 nm (16-bit linear grey PNG).
+pe --preset disk --size 160 --light mono --lambda-nm 589 --phase-steps 6 -o "$out/disk-step.png"
+
 # Fig. 2-like: a 0.76 mm polycarbonate card pressed on its top edge, between an s-polarised
 # source (polarizer at 0 deg) and a crossed filter, white light.
 csv=$(mktemp)

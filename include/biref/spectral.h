@@ -112,6 +112,13 @@ BIREF_API biref_status biref_spectrum_expansion_polarized(const biref_spectral *
                                                           const biref_complex C[2][2], const biref_complex P[2][2],
                                                           const biref_expansion_opts *opts, double xyz[3], int *order_used);
 
+/* Band-normalised energy, detected for coherency C and analyzer P (NULL = none), of all paths
+ * of order > `order` added incoherently: the closed-form tail of the path-group expansion
+ * (order -1: all paths). which = BIREF_TRANSMISSION or BIREF_REFLECTION. For
+ * judging a truncation (bench_spectral --truncation); no allocation. */
+BIREF_API void biref_expansion_tail(const biref_spectral *sp, const biref_slab_state *st, int which,
+                                    const biref_complex C[2][2], const biref_complex P[2][2], int order, double out[3]);
+
 /* The four input/output pairs of transmission and reflection (like biref_spectrum_analytic). */
 BIREF_API biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab_state *st,
                                                 const biref_expansion_opts *opts, biref_spectrum *out);

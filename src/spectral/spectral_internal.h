@@ -67,11 +67,6 @@ biref_status biref_expansion_series_polarized(const biref_spectral *sp, const bi
                                               const double complex C[2][2], const double complex P[2][2],
                                               const biref_expansion_opts *opts, double xyz[3], int *order_used);
 
-/* Incoherent energy of all paths of order > order for coherency C and analyzer P (NULL = none):
- * the closed-form tail of the path-group expansion (src/spectral/expansion.c). */
-void biref_expansion_tail(const biref_spectral *sp, const biref_slab_state *st, int which, const double complex C[2][2],
-                          const double complex P[2][2], int order, double out[3]);
-
 /* The plan that integrates this slab exactly when the fast methods' path picture does not hold
  * (thin slabs, evanescent legs coupling the faces; src/spectral/coherent.c), or NULL when it
  * does. */

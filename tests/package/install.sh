@@ -80,8 +80,11 @@ print('ok: installed Python package agrees with biref slab --json')
 
 # pip install ./python (offline here: no index, dependencies already present), then the package
 # finds the installed library through pkg-config alone.
+# (From a copy: building writes build/ and *.egg-info next to pyproject.toml.)
+cp -r "$src/python" "$tmp/python-src"
+rm -rf "$tmp/python-src/build" "$tmp/python-src"/*.egg-info
 /usr/bin/python3 -m pip install -q --no-build-isolation --no-deps --no-index --disable-pip-version-check \
-  --target "$tmp/pip" "$src/python" 2>/dev/null
+  --target "$tmp/pip" "$tmp/python-src" 2>/dev/null
 env -u BIREF_LIBRARY -u BIREF_CDEF PYTHONPATH="$tmp/pip" /usr/bin/python3 -c "
 import biref
 assert biref.library_path.startswith('$libdir'), biref.library_path

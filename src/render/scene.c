@@ -13,6 +13,7 @@
 
 #include "biref/render.h"
 #include "error.h"
+#include "io/json_strict.h"
 #include "render/vec3.h"
 
 /* A JSON path such as "slabs[2].normal" names every error. 96 bytes hold the deepest path. */
@@ -64,22 +65,14 @@ static const char *type_name(const cJSON *v)
 }
 
 /* Unknown keys are errors: a typo such as "thicknes_mm" must not silently fall back to a
- * default. "comment" and keys starting with '_' are free-form annotations. Duplicate keys
- * are rejected because cJSON would silently use the first one. */
+ * default (io/json_strict.h). */
 static biref_status check_keys(pctx *c, const cJSON *obj, const char *where, const char *const *allowed)
 {
-    for (const cJSON *it = obj->child; it; it = it->next) {
-        const char *k = it->string ? it->string : "";
-        field_path p = path_key(where, k);
-        if (!strcmp(k, "comment") || k[0] == '_') continue;
-        int known = 0;
-        for (const char *const *a = allowed; *a; a++)
-            if (!strcmp(*a, k)) known = 1;
-        if (!known) return FAIL(c, p.s, "unknown field");
-        for (const cJSON *jt = obj->child; jt != it; jt = jt->next)
-            if (jt->string && !strcmp(jt->string, k)) return FAIL(c, p.s, "given twice");
-    }
-    return BIREF_OK;
+    int twice;
+    const char *k = biref_json_bad_key(obj, allowed, &twice);
+    if (!k) return BIREF_OK;
+    field_path p = path_key(where, k);
+    return FAIL(c, p.s, twice ? "given twice" : "unknown field");
 }
 
 /* *out = the member or NULL when absent (an error when required). */
@@ -499,46 +492,14 @@ static void scene_defaults(biref_scene *sc)
     sc->filter.type = BIREF_FILTER_NONE;
 }
 
-/* Byte offset -> "line L, column C" for parse errors. */
-static void line_col(const char *text, size_t off, int *line, int *col)
-{
-    *line = 1;
-    *col = 1;
-    for (size_t i = 0; i < off; i++) {
-        if (text[i] == '\n') {
-            (*line)++;
-            *col = 1;
-        } else {
-            (*col)++;
-        }
-    }
-}
-
 biref_status biref_scene_parse(const char *text, size_t len, biref_scene *out, char *msg, size_t msg_len)
 {
     pctx ctx = {msg, msg_len}, *c = &ctx;
     if (!text || !out) return FAIL(c, "scene", "no input");
-    const char *end = NULL;
-    cJSON *root = cJSON_ParseWithLengthOpts(text, len, &end, 0);
-    if (!root) {
-        /* cJSON reports where it stopped; a truncated file stops at its end. */
-        size_t off = end && end >= text && end <= text + len ? (size_t)(end - text) : len;
-        int line, col;
-        line_col(text, off, &line, &col);
-        if (off >= len)
-            return FAIL(c, "scene", "malformed JSON: unexpected end of file (truncated?)");
-        return FAIL(c, "scene", "malformed JSON at line %d, column %d", line, col);
-    }
-    /* Anything but whitespace after the value is garbage (e.g. two objects pasted together). */
-    size_t off = end ? (size_t)(end - text) : len;
-    while (off < len && (text[off] == ' ' || text[off] == '\t' || text[off] == '\n' || text[off] == '\r')) off++;
+    char why[160];
+    cJSON *root = biref_json_parse_strict(text, len, why, sizeof why);
+    if (!root) return FAIL(c, "scene", "%s", why);
     biref_status s = BIREF_OK;
-    if (off < len && text[off] != '\0') {
-        int line, col;
-        line_col(text, off, &line, &col);
-        s = FAIL(c, "scene", "malformed JSON: extra text at line %d, column %d", line, col);
-        goto done;
-    }
 
     biref_scene sc;
     scene_defaults(&sc);

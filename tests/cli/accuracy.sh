@@ -116,6 +116,38 @@ expect_error "material with two thicknesses" accuracy "${tiny[@]}" --materials "
 echo '[{"name": "x", "eta_o": 1.5, "eta_e": 1.5, "axis": [0, 1, 0], "thickness_mm": 1, "analyzer": "q"}]' \
   >"$tmpdir/bad.json"
 expect_error "material with bad analyzer" accuracy "${tiny[@]}" --materials "$tmpdir/bad.json"
+good='{"name": "x", "eta_o": 1.5, "eta_e": 1.51, "axis": [0, 1, 0], "thickness_mm": 1'
+echo "[$good, \"analyser\": \"s\"}]" >"$tmpdir/bad.json"
+expect_error "material with a misspelt key" accuracy "${tiny[@]}" --materials "$tmpdir/bad.json"
+grep -q '"analyser": unknown field' "$tmpdir/err" || { echo "FAIL (misspelt key named)"; fails=$((fails + 1)); }
+echo "[$good, \"eta_o\": 1.6}]" >"$tmpdir/bad.json"
+expect_error "material with a key given twice" accuracy "${tiny[@]}" --materials "$tmpdir/bad.json"
+grep -q '"eta_o": given twice' "$tmpdir/err" || { echo "FAIL (repeated key named)"; fails=$((fails + 1)); }
+echo "[$good}] trailing" >"$tmpdir/bad.json"
+expect_error "materials file with trailing text" accuracy "${tiny[@]}" --materials "$tmpdir/bad.json"
+echo "{\"materials\": [$good}], \"materialz\": 1}" >"$tmpdir/bad.json"
+expect_error "materials file with an unknown top-level key" accuracy "${tiny[@]}" --materials "$tmpdir/bad.json"
+# Counts from huge ratios are range-checked before they become integers.
+expect_error "theta step 1e-300" accuracy "${tiny[@]}" --theta-step-deg 1e-300
+grep -q 'more than 100000 angles' "$tmpdir/err" || { echo "FAIL (theta step message)"; fails=$((fails + 1)); }
+expect_ok "check step far beyond the grid" accuracy --theta-max-deg 0 --theta-step-deg 1e-300 --check-step-deg 1e300 \
+  --azimuths 1 --samples-ref 64 --samples-check 128 --sweep-delta-eps none --materials "$tmpdir/mat.json"
+# A usage error or an interrupted run leaves existing reports alone and creates no empty ones.
+echo previous >"$tmpdir/prev.csv"
+expect_error "usage error keeps the old csv" accuracy "${tiny[@]}" --csv "$tmpdir/prev.csv" --azimuths 0
+[ "$(cat "$tmpdir/prev.csv")" = previous ] || { echo "FAIL (old csv touched)"; fails=$((fails + 1)); }
+expect_error "bad materials keep the old csv" accuracy "${tiny[@]}" --csv "$tmpdir/prev.csv" --materials "$tmpdir/bad.json"
+[ "$(cat "$tmpdir/prev.csv")" = previous ] || { echo "FAIL (old csv touched by a bad run)"; fails=$((fails + 1)); }
+expect_error "bad range keeps the old csv" accuracy "${tiny[@]}" --csv "$tmpdir/prev.csv" --range-nm 700,380
+[ "$(cat "$tmpdir/prev.csv")" = previous ] || { echo "FAIL (old csv removed by a bad range)"; fails=$((fails + 1)); }
+"$BIREF" accuracy --csv "$tmpdir/int.csv" --markdown "$tmpdir/int.md" >/dev/null 2>&1 &
+pid=$!
+sleep 0.5
+kill -TERM "$pid" 2>/dev/null
+wait "$pid" 2>/dev/null
+if [ -e "$tmpdir/int.csv" ] || [ -e "$tmpdir/int.md" ]; then
+  echo "FAIL (interrupted run left reports)"; fails=$((fails + 1))
+fi
 expect_error "unwritable csv" accuracy "${tiny[@]}" --csv "$tmpdir/no/such/dir.csv"
 expect_error "unknown option" accuracy "${tiny[@]}" --frobnicate
 expect_error "stray argument" accuracy "${tiny[@]}" extra

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "cli_common.h"
+#include "io/outfile.h"
 #include "json_out.h"
 #include "study.h"
 
@@ -41,25 +42,32 @@ int acc_options_finish(acc_options *o)
     /* The check defaults to 4x the reference: a midpoint rule that has converged changes by far
      * less than the error it had when the samples are quadrupled. */
     if (o->samples_check < 0) o->samples_check = o->samples_ref <= MAX_SAMPLES / 4 ? 4 * o->samples_ref : 0;
-    o->ntheta = (int)floor(o->theta_max_deg / o->theta_step_deg + 1e-9) + 1;
-    if (o->ntheta > 100000)
+    /* Counts are computed in double and range-checked before they become integers: a step of
+     * 1e-300 makes a ratio far beyond any int. */
+    const double ntheta = floor(o->theta_max_deg / o->theta_step_deg + 1e-9) + 1;
+    if (!(ntheta <= 100000))
         return cli_error(ACC_CMD, "--theta-step-deg: %g gives more than 100000 angles", o->theta_step_deg), -1;
-    o->kcheck = (int)lround(o->check_step_deg / o->theta_step_deg);
+    o->ntheta = (int)ntheta;
+    /* A check step beyond the grid checks the first angle alone. */
+    o->kcheck = (int)lround(fmin(o->check_step_deg / o->theta_step_deg, ntheta));
     if (o->kcheck < 1) o->kcheck = 1;
     return 0;
 }
 
-static FILE *open_out(const char *opt, const char *path)
+/* Reports go through io/outfile.h: they appear complete at the end of a successful run or not at
+ * all, so a usage error or an interrupt leaves an existing report as it was. */
+static biref_outfile *open_out(const char *opt, const char *path)
 {
-    FILE *f = fopen(path, "w");
-    if (!f) cli_error(ACC_CMD, "%s: cannot write '%s': %s", opt, path, strerror(errno));
-    return f;
+    char msg[600];
+    biref_outfile *o = biref_outfile_open(path, msg, sizeof msg);
+    if (!o) cli_error(ACC_CMD, "%s: %s", opt, msg);
+    return o;
 }
 
-static int close_out(const char *opt, const char *path, FILE *f)
+static int close_out(const char *opt, biref_outfile *o)
 {
-    int bad = ferror(f);
-    if (fclose(f) != 0 || bad) return cli_error(ACC_CMD, "%s: error writing '%s'", opt, path), -1;
+    char msg[600];
+    if (biref_outfile_close(o, 1, msg, sizeof msg) != BIREF_OK) return cli_error(ACC_CMD, "%s: %s", opt, msg), -1;
     return 0;
 }
 
@@ -168,19 +176,19 @@ static int compute(acc_run *run, const acc_options *o, const acc_plans *pl)
 }
 
 /* The figures, the CSV, the Markdown file and stdout; closes (and clears) the open files. */
-static int write_outputs(const acc_run *run, const acc_options *o, FILE **csv, FILE **md)
+static int write_outputs(const acc_run *run, const acc_options *o, biref_outfile **csv, biref_outfile **md)
 {
     if (o->plot_dir && acc_write_plots(run, o->plot_dir)) return -1;
     if (*csv) {
-        acc_write_csv(*csv, run);
-        int e = close_out("--csv", o->csv_path, *csv);
+        acc_write_csv(biref_outfile_stream(*csv), run);
+        int e = close_out("--csv", *csv);
         *csv = NULL;
         if (e) return -1;
     }
     if (*md) {
-        fprintf(*md, "## biref accuracy\n\n");
-        acc_write_markdown(*md, run);
-        int e = close_out("--markdown", o->md_path, *md);
+        fprintf(biref_outfile_stream(*md), "## biref accuracy\n\n");
+        acc_write_markdown(biref_outfile_stream(*md), run);
+        int e = close_out("--markdown", *md);
         *md = NULL;
         if (e) return -1;
     }
@@ -212,7 +220,7 @@ int acc_study(const acc_options *o)
 
     biref_spectral *sp = NULL;
     biref_integrator *its[NINTEGRATORS] = {0};
-    FILE *csv = NULL, *md = NULL;
+    biref_outfile *csv = NULL, *md = NULL;
     acc_plans pl;
     int rc = make_materials(&run, o);
     if (rc != CLI_EXIT_OK) goto done;
@@ -227,8 +235,8 @@ int acc_study(const acc_options *o)
     rc = CLI_EXIT_OK;
 
 done:
-    if (csv) fclose(csv), remove(o->csv_path);
-    if (md) fclose(md), remove(o->md_path);
+    if (csv) biref_outfile_close(csv, 0, NULL, 0);
+    if (md) biref_outfile_close(md, 0, NULL, 0);
     for (int k = 0; k < NINTEGRATORS; k++) biref_integrator_destroy(its[k]);
     biref_spectral_destroy(sp);
     if (run.res)

@@ -8,6 +8,7 @@
 #include <cjson/cJSON.h>
 
 #include "cli_common.h"
+#include "io/json_strict.h"
 #include "study.h"
 
 static void set_material(acc_material *m, const char *name, double eta_o, double eta_e, double ax, double ay,
@@ -41,12 +42,24 @@ static int json_number(const cJSON *o, const char *key, double *out)
     return 1;
 }
 
+/* Unknown and repeated keys are refused as in scene files (io/json_strict.h). */
+static int bad_key(const char *where, const cJSON *o, const char *const *keys)
+{
+    int twice;
+    const char *k = biref_json_bad_key(o, keys, &twice);
+    if (!k) return 0;
+    return cli_error(ACC_CMD, "%s: \"%s\": %s", where, k, twice ? "given twice" : "unknown field"), -1;
+}
+
 /* One material from a JSON object; errors name the file and the material's position. */
 static int parse_material(const char *path, int idx, const cJSON *o, acc_material *m)
 {
     char where[600];
     snprintf(where, sizeof where, "%s: material %d", path, idx + 1);
     if (!cJSON_IsObject(o)) return cli_error(ACC_CMD, "%s: expected an object", where), -1;
+    static const char *const keys[] = {"name", "eta_o", "eta_e", "eta_i", "axis", "thickness_nm", "thickness_um",
+                                       "thickness_mm", "polarization", "analyzer", NULL};
+    if (bad_key(where, o, keys)) return -1;
     memset(m, 0, sizeof *m);
     m->base = -1;
     m->slab.eta_i = 1.0;
@@ -121,13 +134,18 @@ int acc_load_materials(const char *path, acc_material *m, int cap, int *n)
         free(text);
         return cli_error(ACC_CMD, "--materials: '%s': %s", path, rd_err ? "read error" : "larger than 1 MiB"), -1;
     }
-    text[len] = '\0';
-    cJSON *root = cJSON_Parse(text);
+    char why[200];
+    cJSON *root = biref_json_parse_strict(text, len, why, sizeof why);
     free(text);
-    if (!root) return cli_error(ACC_CMD, "--materials: '%s' is not valid JSON", path), -1;
+    if (!root) return cli_error(ACC_CMD, "--materials: '%s': %s", path, why), -1;
     const cJSON *list = cJSON_IsArray(root) ? root : cJSON_GetObjectItemCaseSensitive(root, "materials");
+    static const char *const top_keys[] = {"materials", NULL};
+    char where[600];
+    snprintf(where, sizeof where, "--materials: '%s'", path);
     int rc = 0;
-    if (!cJSON_IsArray(list) || cJSON_GetArraySize(list) < 1 || cJSON_GetArraySize(list) > cap) {
+    if (cJSON_IsObject(root) && bad_key(where, root, top_keys)) {
+        rc = -1;
+    } else if (!cJSON_IsArray(list) || cJSON_GetArraySize(list) < 1 || cJSON_GetArraySize(list) > cap) {
         cli_error(ACC_CMD, "--materials: '%s': expected a list of 1 to %d materials", path, cap);
         rc = -1;
     } else {

@@ -20,25 +20,18 @@
 
 static const char *const WHICH_TITLE[2] = {"transmission", "reflection"};
 
-/* pngcairo reports nothing when it cannot write: try the path first so the command fails cleanly. */
-static int writable(const char *path)
-{
-    FILE *f = fopen(path, "wb");
-    if (!f) return cli_error("accuracy", "--plot-dir: cannot write '%s': %s", path, strerror(errno)), -1;
-    fclose(f);
-    return 0;
-}
-
 /* A light grey for the grid, after fig_plot.h's palette (whose grey is for data and guides). */
 enum { GRID_GREY = FIG_BROWN + 1 };
 
 /* One page without PLplot subpages: the panels get explicit viewports. */
-static void page_begin(const char *path, int width, int height)
+static int page_begin(const char *path, int width, int height)
 {
-    fig_plot_begin(path, width, height, 1, 1);
+    if (fig_plot_begin(path, width, height, 1, 1))
+        return cli_error("accuracy", "--plot-dir: %s", fig_plot_message()), -1;
     plscmap0n(GRID_GREY + 1); /* keeps the colours already set */
     plscol0(GRID_GREY, 215, 215, 215);
     pladv(0);
+    return 0;
 }
 
 static double lg(double v) { return log10(fmax(v, DE_FLOOR)); }
@@ -147,7 +140,6 @@ static void bottom_legend(int n, const legend_entry *e)
 
 int acc_plot_vs_cost(const char *path, const acc_plot_cost_point *p, int n, const char *note)
 {
-    if (writable(path)) return -1;
     double xmin = INFINITY, xmax = 0.0, ymax = 1.0;
     for (int i = 0; i < n; i++) {
         xmin = fmin(xmin, p[i].ns);
@@ -159,7 +151,7 @@ int acc_plot_vs_cost(const char *path, const acc_plot_cost_point *p, int n, cons
     xmax = pow(10.0, ceil(log10(xmax * 1.5)));
     ymax = pow(10.0, ceil(log10(ymax * 1.2)));
     plsetopt("drvopt", "graphics_anti_aliasing=0"); /* the default; acc_plot_vs_theta turns it off */
-    page_begin(path, 1500, 680);
+    if (page_begin(path, 1500, 680)) return -1;
     for (int w = 0; w < 2; w++) {
         char title[96];
         snprintf(title, sizeof title, "ΔE00 vs cost, %s", WHICH_TITLE[w]);
@@ -207,13 +199,12 @@ int acc_plot_vs_cost(const char *path, const acc_plot_cost_point *p, int n, cons
                                 {"path-group expansion", FIG_BLUE, 0, 0.0, MARK_MEAN},
                                 {"numeric, N samples (label: N)", FIG_GREY, 1, 1.0, MARK_MEAN}};
     bottom_legend(sizeof leg / sizeof leg[0], leg);
-    fig_plot_end();
+    if (fig_plot_end()) return cli_error("accuracy", "--plot-dir: %s", fig_plot_message()), -1;
     return 0;
 }
 
 int acc_plot_vs_theta(const char *path, const acc_plot_theta_data *d)
 {
-    if (writable(path)) return -1;
     double ymax = 1.0;
     for (long i = 0; i < (long)d->nmat * d->nmeth * 2 * d->ntheta; i++)
         if (d->max[i] == d->max[i]) ymax = fmax(ymax, d->max[i]);
@@ -222,7 +213,7 @@ int acc_plot_vs_theta(const char *path, const acc_plot_theta_data *d)
     /* Without anti-aliased lines: the ten jagged curves per panel otherwise make a 430 KB PNG
      * (about 110 KB without), and at this size the lines still read well. */
     plsetopt("drvopt", "graphics_anti_aliasing=1");
-    page_begin(path, 1500, 900);
+    if (page_begin(path, 1500, 900)) return -1;
     const double left = 0.055, right = 0.99, gap = 0.05, pw = (right - left - (d->nmat - 1) * gap) / d->nmat;
     enum { MAXT = 4096 };
     double x[MAXT], y[MAXT];
@@ -273,6 +264,6 @@ int acc_plot_vs_theta(const char *path, const acc_plot_theta_data *d)
     snprintf(guide, sizeof guide, "θ = %g°", d->mark_deg);
     if (d->mark_deg > 0.0 && d->mark_deg < th1) leg[nl++] = (legend_entry){guide, FIG_GREY, 3, 1.0, NULL};
     bottom_legend(nl, leg);
-    fig_plot_end();
+    if (fig_plot_end()) return cli_error("accuracy", "--plot-dir: %s", fig_plot_message()), -1;
     return 0;
 }

@@ -313,7 +313,7 @@ static void write_sweep_md(FILE *f, const acc_run *run, char bl[NBIN][32])
 static void write_per_angle_md(FILE *f, const acc_run *run, char bl[NBIN][32])
 {
     /* A coarse per-angle view of the two fast methods (every 5° or so; the CSV has every angle). */
-    int every = (int)lround(5.0 / run->theta_step_deg);
+    int every = (int)lround(fmin(5.0 / run->theta_step_deg, run->ntheta));
     if (every < 1) every = 1;
     for (int w = 0; w < 2; w++) {
         fprintf(f, "\n### Per angle, %s: max / mean ΔE00 over azimuths, analytic and expansion\n\n| θ |",

@@ -20,11 +20,13 @@ static int open_gl(const char *cmd, gl_context **g)
     return 0;
 }
 
-int cli_gl_render(const char *cmd, const biref_scene *scene, float *xyz, biref_render_stats *stats, double *gpu_ms)
+int cli_gl_render(const char *cmd, const biref_scene *scene, float *xyz, biref_render_stats *stats, double *gpu_ms,
+                  char *device, size_t device_len)
 {
     gl_context *g = NULL;
     int rc = open_gl(cmd, &g);
     if (rc) return rc;
+    snprintf(device, device_len, "%s", gl_context_description(g));
     char msg[400];
     if (gl_context_render(g, scene, xyz, gpu_ms, stats, msg, sizeof msg) != BIREF_OK) {
         cli_error(cmd, "--backend gl: %s", msg);

@@ -16,7 +16,8 @@ static void help(void)
     printf("usage: biref gl-data -o FILE.js SCENE.json...\n\n"
            "Writes a JavaScript module for the WebGL2 viewer (web/index.html): the GLSL source of the\n"
            "analytic method (shaders/biref_analytic.glsl, as compiled into the library), the look-up\n"
-           "table of S(cos kD), S(sin kD) as float texels, and each scene's shader uniforms as a\n"
+           "table of S(cos kD), S(sin kD) and the coherent regime's sample plans as float texels, and\n"
+           "each scene's shader uniforms as a\n"
            "preset named after its file. The repository's copy is made with\n"
            "  biref gl-data -o web/biref_data.js examples/*.json\n\n"
            "Options:\n"
@@ -127,7 +128,23 @@ int cmd_gl_data(int argc, char **argv)
             fprintf(f, "export const table = {width: %d, height: %d, texels: new Float32Array([", info.width, info.height);
             const size_t n = (size_t)info.width * info.height * 4;
             for (size_t k = 0; k < n; k++) fprintf(f, "%s%.9g", k ? (k % 16 ? "," : ",\n") : "\n", (double)tex[k]);
-            fprintf(f, "])};\nexport const presets = %s;\n", preset_text);
+            fprintf(f, "])};\n");
+            /* The coherent regime's sample plans (thin slabs, evanescent coupling). */
+            biref_gl_plans_info pl;
+            biref_gl_coherent_plans(sp, &pl, NULL);
+            float *pt = malloc((size_t)pl.width * pl.height * 4 * sizeof *pt);
+            if (pt) {
+                biref_gl_coherent_plans(sp, &pl, pt);
+                fprintf(f, "export const plans = {width: %d, height: %d, texels: new Float32Array([", pl.width, pl.height);
+                const size_t np = (size_t)pl.width * pl.height * 4;
+                for (size_t k = 0; k < np; k++) fprintf(f, "%s%.9g", k ? (k % 16 ? "," : ",\n") : "\n", (double)pt[k]);
+                fprintf(f, "])};\n");
+                free(pt);
+            } else {
+                rc = CLI_EXIT_FAIL;
+                cli_error(CMD, "out of memory");
+            }
+            fprintf(f, "export const presets = %s;\n", preset_text);
             if (fclose(f) != 0) {
                 cli_error(CMD, "%s: cannot write", out);
                 rc = CLI_EXIT_FAIL;

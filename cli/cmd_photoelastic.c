@@ -460,7 +460,8 @@ int cmd_photoelastic(int argc, char **argv)
     }
     double tint_rgb[3] = {io.tint[0], io.tint[1], io.tint[2]};
     for (int i = 0; i < 3; i++) io.tint[i] *= exposure;
-    if (out && (rc = cli_check_output(CMD, out, &grid_path, 1))) goto done;
+    const char *inputs[3] = {grid_path, ext.nodes_path, ext.boundary_path};
+    if (out && (rc = cli_check_output(CMD, out, inputs, 3))) goto done;
     if (light == BIREF_PE_WHITE && biref_spectral_create(NULL, &sp) != BIREF_OK) {
         cli_error(CMD, "cannot create the spectral tables");
         rc = CLI_EXIT_FAIL;

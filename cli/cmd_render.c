@@ -153,7 +153,8 @@ int cmd_render(int argc, char **argv)
     biref_progress_bar_init(&bar, stderr, !gl && !quiet && isatty(fileno(stderr)), "render");
     biref_render_stats stats;
     double t0 = biref_wall_seconds(), gpu_ms = 0;
-    if (gl && (rc = cli_gl_render(CMD, &scene, xyz, &stats, &gpu_ms))) {
+    char device[256] = "";
+    if (gl && (rc = cli_gl_render(CMD, &scene, xyz, &stats, &gpu_ms, device, sizeof device))) {
         free(xyz);
         free(rgb);
         return rc;
@@ -204,6 +205,7 @@ int cmd_render(int argc, char **argv)
         cJSON_AddStringToObject(root, "method", biref_method_name(opt.method));
         cJSON_AddStringToObject(root, "backend", gl ? "gl" : "cpu");
         if (gl) cJSON_AddNumberToObject(root, "gpu_ms", round(gpu_ms * 1000) / 1000);
+        if (gl) cJSON_AddStringToObject(root, "device", device);
         if (samples_used)
             cJSON_AddNumberToObject(root, "samples", samples_used);
         else

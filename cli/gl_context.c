@@ -22,7 +22,7 @@ struct gl_context {
     EGLDisplay dpy;
     EGLContext ctx;
     EGLSurface surf;
-    GLuint prog, vao, lut;
+    GLuint prog, vao, lut, plans;
     biref_spectral *sp; /* the table's source and constants, kept for the uniforms */
     char desc[256];
 };
@@ -103,26 +103,92 @@ static biref_status upload_table(gl_context *g, char *msg, size_t msg_len)
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, info.width, info.height, 0, GL_RGBA, GL_FLOAT, tex);
     free(tex);
-    return glGetError() == GL_NO_ERROR ? BIREF_OK : fail(msg, msg_len, "OpenGL: cannot create the look-up texture");
+    /* The coherent regime's sample plans. */
+    biref_gl_plans_info pl;
+    biref_gl_coherent_plans(g->sp, &pl, NULL);
+    tex = malloc((size_t)pl.width * pl.height * 4 * sizeof *tex);
+    if (!tex) return fail(msg, msg_len, "out of memory");
+    biref_gl_coherent_plans(g->sp, &pl, tex);
+    glGenTextures(1, &g->plans);
+    glBindTexture(GL_TEXTURE_2D, g->plans);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, pl.width, pl.height, 0, GL_RGBA, GL_FLOAT, tex);
+    free(tex);
+    return glGetError() == GL_NO_ERROR ? BIREF_OK : fail(msg, msg_len, "OpenGL: cannot create the look-up textures");
 }
 
-/* EGL display: Mesa's surfaceless platform (no window system, no GPU needed), else the default. */
-static EGLDisplay open_display(void)
+/* A context on one display: OpenGL >= 4.3 core, current, surfaceless when the driver allows it
+ * (we draw into a framebuffer object), else on a 1x1 pbuffer. */
+static biref_status make_current(gl_context *g, char *msg, size_t msg_len)
 {
-    EGLDisplay dpy = EGL_NO_DISPLAY;
+    EGLConfig cfg;
+    EGLint n = 0;
+    const EGLint cfg_attr[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    const EGLint cfg_any[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    if (!eglBindAPI(EGL_OPENGL_API) || ((!eglChooseConfig(g->dpy, cfg_attr, &cfg, 1, &n) || n < 1) &&
+                                        (!eglChooseConfig(g->dpy, cfg_any, &cfg, 1, &n) || n < 1)))
+        return fail(msg, msg_len, "EGL: no configuration for desktop OpenGL");
+    const EGLint ctx_attr[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                               EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    g->ctx = eglCreateContext(g->dpy, cfg, EGL_NO_CONTEXT, ctx_attr);
+    if (g->ctx == EGL_NO_CONTEXT)
+        return fail(msg, msg_len, "EGL: no OpenGL 4.3 core context (EGL error 0x%x)", (unsigned)eglGetError());
+    if (!eglMakeCurrent(g->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, g->ctx)) {
+        const EGLint pb[] = {EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE};
+        g->surf = eglCreatePbufferSurface(g->dpy, cfg, pb);
+        if (g->surf == EGL_NO_SURFACE || !eglMakeCurrent(g->dpy, g->surf, g->surf, g->ctx))
+            return fail(msg, msg_len, "EGL: cannot make the OpenGL context current");
+    }
+    if (epoxy_gl_version() < 43)
+        return fail(msg, msg_len, "OpenGL %d.%d found, the gl back-end needs OpenGL >= 4.3", epoxy_gl_version() / 10,
+                    epoxy_gl_version() % 10);
+    return BIREF_OK;
+}
+
+static void release_context(gl_context *g)
+{
+    if (g->ctx != EGL_NO_CONTEXT) {
+        eglMakeCurrent(g->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        eglDestroyContext(g->dpy, g->ctx);
+    }
+    if (g->surf != EGL_NO_SURFACE) eglDestroySurface(g->dpy, g->surf);
+    g->ctx = EGL_NO_CONTEXT;
+    g->surf = EGL_NO_SURFACE;
+}
+
+#define MAX_DEVICES 16
+
+/* Candidate displays, best first: each hardware EGL device (a real GPU, without a window
+ * system), Mesa's surfaceless platform (its GPU, or llvmpipe where there is none), the default
+ * display. Returns the number written. */
+static int candidate_displays(EGLDisplay out[MAX_DEVICES + 2])
+{
+    int n = 0;
     const char *ext = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     /* Looked up by hand: libepoxy dispatches client extensions by a display's version. */
     PFNEGLGETPLATFORMDISPLAYEXTPROC get_platform_display =
         (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
-    if (ext && strstr(ext, "EGL_MESA_platform_surfaceless") && get_platform_display) {
-        dpy = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
-        if (dpy != EGL_NO_DISPLAY && !eglInitialize(dpy, NULL, NULL)) dpy = EGL_NO_DISPLAY;
+    PFNEGLQUERYDEVICESEXTPROC query_devices = (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
+    PFNEGLQUERYDEVICESTRINGEXTPROC device_string =
+        (PFNEGLQUERYDEVICESTRINGEXTPROC)eglGetProcAddress("eglQueryDeviceStringEXT");
+    if (!ext || !get_platform_display) return 0;
+    if (strstr(ext, "EGL_EXT_platform_device") && query_devices && device_string) {
+        EGLDeviceEXT dev[MAX_DEVICES];
+        EGLint nd = 0;
+        if (query_devices(MAX_DEVICES, dev, &nd))
+            for (EGLint i = 0; i < nd; i++) {
+                const char *dext = device_string(dev[i], EGL_EXTENSIONS);
+                if (dext && strstr(dext, "EGL_MESA_device_software")) continue; /* llvmpipe: below */
+                EGLDisplay d = get_platform_display(EGL_PLATFORM_DEVICE_EXT, dev[i], NULL);
+                if (d != EGL_NO_DISPLAY) out[n++] = d;
+            }
     }
-    if (dpy == EGL_NO_DISPLAY) {
-        dpy = eglGetDisplay(EGL_DEFAULT_DISPLAY);
-        if (dpy != EGL_NO_DISPLAY && !eglInitialize(dpy, NULL, NULL)) dpy = EGL_NO_DISPLAY;
+    if (strstr(ext, "EGL_MESA_platform_surfaceless")) {
+        EGLDisplay d = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
+        if (d != EGL_NO_DISPLAY) out[n++] = d;
     }
-    return dpy;
+    return n;
 }
 
 biref_status gl_context_create(gl_context **out, char *msg, size_t msg_len)
@@ -134,43 +200,21 @@ biref_status gl_context_create(gl_context **out, char *msg, size_t msg_len)
     dlclose(egl);
     gl_context *g = calloc(1, sizeof *g);
     if (!g) return fail(msg, msg_len, "out of memory");
-    g->dpy = open_display();
-    if (g->dpy == EGL_NO_DISPLAY) {
-        free(g);
-        return fail(msg, msg_len, "EGL: no display could be initialised (no OpenGL driver?)");
-    }
-    biref_status s = BIREF_OK;
-    EGLConfig cfg;
-    EGLint n = 0;
-    const EGLint cfg_attr[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
-    const EGLint cfg_any[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
-    if (!eglBindAPI(EGL_OPENGL_API) || ((!eglChooseConfig(g->dpy, cfg_attr, &cfg, 1, &n) || n < 1) &&
-                                        (!eglChooseConfig(g->dpy, cfg_any, &cfg, 1, &n) || n < 1))) {
-        s = fail(msg, msg_len, "EGL: no configuration for desktop OpenGL");
-        goto out;
-    }
-    const EGLint ctx_attr[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                               EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
-    g->ctx = eglCreateContext(g->dpy, cfg, EGL_NO_CONTEXT, ctx_attr);
-    if (g->ctx == EGL_NO_CONTEXT) {
-        s = fail(msg, msg_len, "EGL: no OpenGL 4.3 core context (EGL error 0x%x)", (unsigned)eglGetError());
-        goto out;
-    }
-    /* Surfaceless when the driver allows it; a 1x1 pbuffer otherwise (we draw into an FBO). */
+    g->dpy = EGL_NO_DISPLAY;
+    g->ctx = EGL_NO_CONTEXT;
     g->surf = EGL_NO_SURFACE;
-    if (!eglMakeCurrent(g->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, g->ctx)) {
-        const EGLint pb[] = {EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE};
-        g->surf = eglCreatePbufferSurface(g->dpy, cfg, pb);
-        if (g->surf == EGL_NO_SURFACE || !eglMakeCurrent(g->dpy, g->surf, g->surf, g->ctx)) {
-            s = fail(msg, msg_len, "EGL: cannot make the OpenGL context current");
-            goto out;
-        }
+    EGLDisplay cand[MAX_DEVICES + 2];
+    int n = candidate_displays(cand);
+    cand[n++] = eglGetDisplay(EGL_DEFAULT_DISPLAY);
+    biref_status s = fail(msg, msg_len, "EGL: no display could be initialised (no OpenGL driver?)");
+    for (int i = 0; i < n; i++) {
+        if (cand[i] == EGL_NO_DISPLAY || !eglInitialize(cand[i], NULL, NULL)) continue;
+        g->dpy = cand[i];
+        if ((s = make_current(g, msg, msg_len)) == BIREF_OK) break;
+        release_context(g);
+        g->dpy = EGL_NO_DISPLAY;
     }
-    if (epoxy_gl_version() < 43) {
-        s = fail(msg, msg_len, "OpenGL %d.%d found, the gl back-end needs OpenGL >= 4.3", epoxy_gl_version() / 10,
-                 epoxy_gl_version() % 10);
-        goto out;
-    }
+    if (s) goto out;
     snprintf(g->desc, sizeof g->desc, "%s, %s, %s", (const char *)glGetString(GL_VENDOR),
              (const char *)glGetString(GL_RENDERER), (const char *)glGetString(GL_VERSION));
     if ((s = build_program(g, msg, msg_len)) || (s = upload_table(g, msg, msg_len))) goto out;
@@ -185,14 +229,13 @@ out:
 void gl_context_destroy(gl_context *g)
 {
     if (!g) return;
-    if (g->ctx != EGL_NO_CONTEXT && g->ctx) {
+    if (g->ctx != EGL_NO_CONTEXT && eglGetCurrentContext() == g->ctx) {
         if (g->prog) glDeleteProgram(g->prog);
         if (g->lut) glDeleteTextures(1, &g->lut);
+        if (g->plans) glDeleteTextures(1, &g->plans);
         if (g->vao) glDeleteVertexArrays(1, &g->vao);
-        eglMakeCurrent(g->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-        eglDestroyContext(g->dpy, g->ctx);
     }
-    if (g->surf != EGL_NO_SURFACE && g->surf) eglDestroySurface(g->dpy, g->surf);
+    release_context(g);
     /* The display stays initialised: EGL displays are process-wide (another object or library
      * may be using the same one), and terminating it unloads the driver, whose caches then
      * show up as leaks of an unknown module under LeakSanitizer. */
@@ -243,6 +286,10 @@ biref_status gl_context_render(gl_context *g, const biref_scene *scene, float *x
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, g->lut);
     glUniform1i(glGetUniformLocation(g->prog, "u_lut"), 0);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, g->plans);
+    glUniform1i(glGetUniformLocation(g->prog, "u_plans"), 1);
+    glActiveTexture(GL_TEXTURE0);
     glBindVertexArray(g->vao);
     glViewport(0, 0, W, H);
     glDisable(GL_BLEND);

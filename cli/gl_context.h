@@ -10,8 +10,8 @@
 
 typedef struct gl_context gl_context;
 
-/* Mesa's surfaceless platform first (no window system, no GPU needed: llvmpipe), then the
- * default display. On failure (no EGL, no OpenGL 4.3, shader build) BIREF_ERR_IO with one line
+/* Hardware EGL devices first, then Mesa's surfaceless platform (no window system, no GPU
+ * needed: llvmpipe), then the default display. On failure (no EGL, no OpenGL 4.3, shader build) BIREF_ERR_IO with one line
  * in msg. One object per thread. */
 biref_status gl_context_create(gl_context **out, char *msg, size_t msg_len);
 void gl_context_destroy(gl_context *g);

@@ -3,6 +3,8 @@
  * libpng. */
 #include "pe_image_io.h"
 
+#include "io/outfile.h"
+
 #include <errno.h>
 #include <math.h>
 #include <png.h>
@@ -11,8 +13,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 static biref_status fail(char *msg, size_t n, const char *path, const char *what, const char *why)
 {
@@ -26,45 +26,26 @@ int pe_has_ext(const char *path, const char *ext)
     return n > m && !strcasecmp(path + n - m, ext);
 }
 
+/* Output goes through the library's careful writer (io/outfile.h): written aside, renamed into
+ * place once complete. */
 typedef struct {
     FILE *f;
-    char *tmp;
+    biref_outfile *o;
 } temp_file;
 
 static int temp_open(temp_file *t, const char *path, char *msg, size_t n)
 {
-    size_t len = strlen(path);
-    t->tmp = malloc(len + 12);
-    if (!t->tmp) return fail(msg, n, path, "cannot write", "out of memory"), -1;
-    memcpy(t->tmp, path, len);
-    memcpy(t->tmp + len, ".tmpXXXXXX", 11);
-    int fd = mkstemp(t->tmp);
-    if (fd < 0) {
-        fail(msg, n, path, "cannot write", strerror(errno));
-        free(t->tmp);
-        return -1;
-    }
-    (void)fchmod(fd, 0644);
-    t->f = fdopen(fd, "wb");
-    if (!t->f) {
-        fail(msg, n, path, "cannot write", strerror(errno));
-        close(fd);
-        unlink(t->tmp);
-        free(t->tmp);
-        return -1;
-    }
+    t->o = biref_outfile_open(path, msg, n);
+    if (!t->o) return -1;
+    t->f = biref_outfile_stream(t->o);
     return 0;
 }
 
 static biref_status temp_commit(temp_file *t, const char *path, int ok, char *msg, size_t n)
 {
-    const char *why = ok ? NULL : "write failed";
-    if (ok && fflush(t->f) != 0) ok = 0, why = strerror(errno);
-    if (fclose(t->f) != 0 && ok) ok = 0, why = strerror(errno);
-    if (ok && rename(t->tmp, path) != 0) ok = 0, why = strerror(errno);
-    if (!ok) unlink(t->tmp);
-    free(t->tmp);
-    return ok ? BIREF_OK : fail(msg, n, path, "cannot write", why);
+    if (!ok && msg && n) snprintf(msg, n, "%s: cannot write: write failed", path);
+    biref_status st = biref_outfile_close(t->o, ok, ok ? msg : NULL, ok ? n : 0);
+    return ok ? st : BIREF_ERR_IO;
 }
 
 biref_status pe_pfm_write(const char *path, int width, int height, int channels, const float *v, char *msg,

@@ -1,6 +1,6 @@
 /* Float and 16-bit image files for the photoelastic data paths: grey PFM (read/write), linear
- * 16-bit grey PNG (libpng, read/write) and CSV maps on the pixel grid. Writers go through a
- * temporary file renamed into place, so a failure leaves no partial file. */
+ * 16-bit grey PNG (libpng, read/write) and CSV maps on the pixel grid. Writers go through
+ * io/outfile.h: a failure leaves no partial file. */
 #ifndef BIREF_CLI_PE_IMAGE_IO_H
 #define BIREF_CLI_PE_IMAGE_IO_H
 

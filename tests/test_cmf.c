@@ -6,7 +6,7 @@
 
 #include "biref/color.h"
 #include "color/cie1931_table.h"
-#include "test_util.h"
+#include "test_cases.h"
 
 /* Brute-force midpoint sum of cmf_j (or of the band-normalised Λ_j when
  * band != NULL) over [a, b] with step h. */
@@ -210,12 +210,14 @@ static void test_names(void)
     CHECK(biref_cmf_kind_name((biref_cmf_kind)3) == NULL);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
-    test_table_layout_and_interpolation();
-    test_wyman();
-    test_band_integrals();
-    test_band_normalisation();
-    test_names();
-    return test_report("test_cmf");
+    static const test_case cases[] = {
+        {"table_layout_and_interpolation", test_table_layout_and_interpolation},
+        {"wyman", test_wyman},
+        {"band_integrals", test_band_integrals},
+        {"band_normalisation", test_band_normalisation},
+        {"names", test_names},
+    };
+    return test_run_cases("test_cmf", cases, TEST_COUNT(cases), argc, argv);
 }

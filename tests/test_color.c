@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "biref/color.h"
-#include "test_util.h"
+#include "test_cases.h"
 
 static const double PI = 3.14159265358979323846;
 
@@ -362,13 +362,15 @@ static void test_srgb8(void)
     CHECK(out[0] == 0 && out[1] == 0 && out[2] == 0);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
-    test_sharma();
-    test_ciede2000_random();
-    test_lab();
-    test_srgb_matrices();
-    test_transfer();
-    test_srgb8();
-    return test_report("test_color");
+    static const test_case cases[] = {
+        {"sharma", test_sharma},
+        {"ciede2000_random", test_ciede2000_random},
+        {"lab", test_lab},
+        {"srgb_matrices", test_srgb_matrices},
+        {"transfer", test_transfer},
+        {"srgb8", test_srgb8},
+    };
+    return test_run_cases("test_color", cases, TEST_COUNT(cases), argc, argv);
 }

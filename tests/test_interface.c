@@ -5,7 +5,7 @@
 #include <math.h>
 
 #include "biref/biref.h"
-#include "test_util.h"
+#include "test_cases.h"
 #include "textbook.h"
 
 /* Time-averaged normal flux Re(E* x H)_y of mode i with unit amplitude. */
@@ -26,9 +26,9 @@ static void random_medium(test_rng *r, biref_medium *m)
     *m = biref_medium_uniaxial(no, no + test_uniform(r, -0.3, 0.3), A);
 }
 
-int main(void)
+/* Isotropic -> isotropic equals Fresnel, cross-polarisation zero. */
+static void isotropic_isotropic_equals_fresnel_cross(void)
 {
-    /* Isotropic -> isotropic equals Fresnel, cross-polarisation zero. */
     for (int t = 0; t < 50; t++) {
         double ea = 1.0 + 0.02 * t, eb = 1.9 - 0.015 * t, K = ea * sin(0.03 * t);
         biref_medium a = biref_medium_isotropic(ea), b = biref_medium_isotropic(eb);
@@ -42,15 +42,21 @@ int main(void)
             CHECK(cabs(f.r_down[p][1 - p]) < 1e-14 && cabs(f.t_down[p][1 - p]) < 1e-14);
         }
     }
-    /* Normal incidence in our basis: r_p = -r_s (docs/CONVENTIONS.md). */
-    {
-        biref_medium a = biref_medium_isotropic(1.0), b = biref_medium_isotropic(1.5);
-        biref_interface f;
-        CHECK(biref_interface_solve(&a, &b, 0.0, &f) == BIREF_OK);
-        CHECK_NEAR(creal(f.r_down[0][0]), -0.2, 1e-14);
-        CHECK_NEAR(creal(f.r_down[1][1]), 0.2, 1e-14);
-    }
-    /* Energy flux across random interfaces, from above and from below, all propagating cases. */
+}
+
+/* Normal incidence in our basis: r_p = -r_s (docs/CONVENTIONS.md). */
+static void normal_incidence_in_our_basis(void)
+{
+    biref_medium a = biref_medium_isotropic(1.0), b = biref_medium_isotropic(1.5);
+    biref_interface f;
+    CHECK(biref_interface_solve(&a, &b, 0.0, &f) == BIREF_OK);
+    CHECK_NEAR(creal(f.r_down[0][0]), -0.2, 1e-14);
+    CHECK_NEAR(creal(f.r_down[1][1]), 0.2, 1e-14);
+}
+
+/* Energy flux across random interfaces, from above and from below, all propagating cases. */
+static void energy_flux_across_random_interfaces(void)
+{
     test_rng rng = {0xfeedbeefULL};
     int tested = 0;
     for (int t = 0; t < 3000; t++) {
@@ -82,22 +88,34 @@ int main(void)
         }
     }
     CHECK(tested > 2000);
-    /* Total reflection: from a dense uniaxial medium into air beyond the critical angle the
-     * reflected power equals the incident power (|r| weighted by flux). */
-    {
-        double A[3] = {0.3, 0.5, 0.8};
-        biref_medium u = biref_medium_uniaxial(1.6, 1.7, A), air = biref_medium_isotropic(1.0);
-        biref_modes mu;
-        double K = 1.2;
-        CHECK(biref_medium_modes(&u, K, &mu) == BIREF_OK);
-        biref_interface f;
-        CHECK(biref_interface_solve(&u, &air, K, &f) == BIREF_OK);
-        for (int i = 0; i < 2; i++) {
-            double in = -flux_y(&mu, BIREF_MODE_O_DOWN + i), out = 0;
-            for (int j = 0; j < 2; j++)
-                out += cabs(f.r_down[i][j]) * cabs(f.r_down[i][j]) * flux_y(&mu, BIREF_MODE_O_UP + j);
-            CHECK_NEAR(out / in, 1.0, 1e-10);
-        }
+}
+
+/* Total reflection: from a dense uniaxial medium into air beyond the critical angle the
+ * reflected power equals the incident power (|r| weighted by flux). */
+static void total_reflection(void)
+{
+    double A[3] = {0.3, 0.5, 0.8};
+    biref_medium u = biref_medium_uniaxial(1.6, 1.7, A), air = biref_medium_isotropic(1.0);
+    biref_modes mu;
+    double K = 1.2;
+    CHECK(biref_medium_modes(&u, K, &mu) == BIREF_OK);
+    biref_interface f;
+    CHECK(biref_interface_solve(&u, &air, K, &f) == BIREF_OK);
+    for (int i = 0; i < 2; i++) {
+        double in = -flux_y(&mu, BIREF_MODE_O_DOWN + i), out = 0;
+        for (int j = 0; j < 2; j++)
+            out += cabs(f.r_down[i][j]) * cabs(f.r_down[i][j]) * flux_y(&mu, BIREF_MODE_O_UP + j);
+        CHECK_NEAR(out / in, 1.0, 1e-10);
     }
-    return test_report("test_interface");
+}
+
+int main(int argc, char **argv)
+{
+    static const test_case cases[] = {
+        {"isotropic_isotropic_equals_fresnel_cross", isotropic_isotropic_equals_fresnel_cross},
+        {"normal_incidence_in_our_basis", normal_incidence_in_our_basis},
+        {"energy_flux_across_random_interfaces", energy_flux_across_random_interfaces},
+        {"total_reflection", total_reflection},
+    };
+    return test_run_cases("test_interface", cases, TEST_COUNT(cases), argc, argv);
 }

@@ -5,7 +5,7 @@
 #include <math.h>
 
 #include "biref/biref.h"
-#include "test_util.h"
+#include "test_cases.h"
 
 /* |(k k^T - (k.k) I + eps) E| for k = (0, q, -K): zero iff E is a mode with normal component q. */
 static double wave_equation_residual(double eo, double ee, const double A[3], double K, double complex q,
@@ -38,9 +38,11 @@ static void random_axis(test_rng *r, double A[3])
     for (int i = 0; i < 3; i++) A[i] /= n;
 }
 
-int main(void)
+/* One stream of draws for all cases, in table order. */
+static test_rng rng = {0x5eed1234abcdULL};
+
+static void modes_solve_the_wave_equation(void)
 {
-    test_rng rng = {0x5eed1234abcdULL};
     int caught_eq2 = 0, generic = 0;
     for (int t = 0; t < 2000; t++) {
         double A[3];
@@ -98,20 +100,25 @@ int main(void)
     }
     CHECK(generic > 100);
     CHECK(caught_eq2 == generic);
+}
 
-    /* K_max (eq. 6). Axis along x: an e wave in the YZ plane always sees eta_e, so K_max_e = eta_e;
-     * the extracted eq. 6 (gamma^2 in place of alpha^2) gives eta_o here. */
-    {
-        double A[3] = {1, 0, 0};
-        biref_medium med = biref_medium_uniaxial(1.5, 1.7, A);
-        biref_modes m;
-        CHECK(biref_medium_modes(&med, 0.3, &m) == BIREF_OK);
-        CHECK_NEAR(m.K_max_e, 1.7, 1e-12);
-        double extracted = 1.7 * sqrt((1.5 * 1.5 + 0.0) / (1.7 * 1.7 - 0.0));
-        CHECK(fabs(extracted - m.K_max_e) > 0.1);
-        CHECK_NEAR(m.eta_eff[BIREF_MODE_E_DOWN], 1.7, 1e-12);
-    }
-    /* Random axes: evanescence switches exactly at K_max_e. */
+/* K_max (eq. 6). Axis along x: an e wave in the YZ plane always sees eta_e, so K_max_e = eta_e;
+ * the extracted eq. 6 (gamma^2 in place of alpha^2) gives eta_o here. */
+static void k_max(void)
+{
+    double A[3] = {1, 0, 0};
+    biref_medium med = biref_medium_uniaxial(1.5, 1.7, A);
+    biref_modes m;
+    CHECK(biref_medium_modes(&med, 0.3, &m) == BIREF_OK);
+    CHECK_NEAR(m.K_max_e, 1.7, 1e-12);
+    double extracted = 1.7 * sqrt((1.5 * 1.5 + 0.0) / (1.7 * 1.7 - 0.0));
+    CHECK(fabs(extracted - m.K_max_e) > 0.1);
+    CHECK_NEAR(m.eta_eff[BIREF_MODE_E_DOWN], 1.7, 1e-12);
+}
+
+/* Random axes: evanescence switches exactly at K_max_e. */
+static void random_axes(void)
+{
     for (int t = 0; t < 200; t++) {
         double A[3];
         random_axis(&rng, A);
@@ -124,30 +131,45 @@ int main(void)
         CHECK(biref_medium_modes(&med, km * (1 + 1e-9), &hi) == BIREF_OK);
         CHECK(!lo.evanescent_e && hi.evanescent_e);
     }
-    /* Degenerate direction: axis along the normal at normal incidence. Both modes are
-     * ordinary-like with index eta_o and the fields stay finite and orthogonal. */
-    {
-        double A[3] = {0, 1, 0};
-        biref_medium med = biref_medium_uniaxial(1.5, 1.6, A);
-        biref_modes m;
-        CHECK(biref_medium_modes(&med, 0.0, &m) == BIREF_OK);
-        for (int i = 0; i < 4; i++) {
-            CHECK_NEAR(cabs(m.q[i]), 1.5, 1e-12);
-            CHECK(wave_equation_residual(1.5 * 1.5, 1.6 * 1.6, A, 0.0, m.q[i], m.E[i]) < 1e-12);
-        }
-        double complex dot = conj(m.E[0][0]) * m.E[1][0] + conj(m.E[0][1]) * m.E[1][1] + conj(m.E[0][2]) * m.E[1][2];
-        CHECK(cabs(dot) < 1e-12);
+}
+
+/* Degenerate direction: axis along the normal at normal incidence. Both modes are
+ * ordinary-like with index eta_o and the fields stay finite and orthogonal. */
+static void degenerate_direction(void)
+{
+    double A[3] = {0, 1, 0};
+    biref_medium med = biref_medium_uniaxial(1.5, 1.6, A);
+    biref_modes m;
+    CHECK(biref_medium_modes(&med, 0.0, &m) == BIREF_OK);
+    for (int i = 0; i < 4; i++) {
+        CHECK_NEAR(cabs(m.q[i]), 1.5, 1e-12);
+        CHECK(wave_equation_residual(1.5 * 1.5, 1.6 * 1.6, A, 0.0, m.q[i], m.E[i]) < 1e-12);
     }
-    /* Invalid media are rejected. */
-    {
-        double A0[3] = {0, 0, 0}, A1[3] = {0, 1, 0};
-        biref_medium bad = biref_medium_uniaxial(1.5, 1.6, A0);
-        biref_modes m;
-        CHECK(biref_medium_modes(&bad, 0.1, &m) == BIREF_ERR_INVALID);
-        bad = biref_medium_uniaxial(NAN, 1.6, A1);
-        CHECK(biref_medium_modes(&bad, 0.1, &m) == BIREF_ERR_INVALID);
-        bad = biref_medium_uniaxial(1.5, -1.6, A1);
-        CHECK(biref_medium_modes(&bad, 0.1, &m) == BIREF_ERR_INVALID);
-    }
-    return test_report("test_modes");
+    double complex dot = conj(m.E[0][0]) * m.E[1][0] + conj(m.E[0][1]) * m.E[1][1] + conj(m.E[0][2]) * m.E[1][2];
+    CHECK(cabs(dot) < 1e-12);
+}
+
+/* Invalid media are rejected. */
+static void invalid_media_are_rejected(void)
+{
+    double A0[3] = {0, 0, 0}, A1[3] = {0, 1, 0};
+    biref_medium bad = biref_medium_uniaxial(1.5, 1.6, A0);
+    biref_modes m;
+    CHECK(biref_medium_modes(&bad, 0.1, &m) == BIREF_ERR_INVALID);
+    bad = biref_medium_uniaxial(NAN, 1.6, A1);
+    CHECK(biref_medium_modes(&bad, 0.1, &m) == BIREF_ERR_INVALID);
+    bad = biref_medium_uniaxial(1.5, -1.6, A1);
+    CHECK(biref_medium_modes(&bad, 0.1, &m) == BIREF_ERR_INVALID);
+}
+
+int main(int argc, char **argv)
+{
+    static const test_case cases[] = {
+        {"modes_solve_the_wave_equation", modes_solve_the_wave_equation},
+        {"k_max", k_max},
+        {"random_axes", random_axes},
+        {"degenerate_direction", degenerate_direction},
+        {"invalid_media_are_rejected", invalid_media_are_rejected},
+    };
+    return test_run_cases("test_modes", cases, TEST_COUNT(cases), argc, argv);
 }

@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #include "biref/biref.h"
-#include "test_util.h"
+#include "test_cases.h"
 
 static int quick;
 
@@ -324,14 +324,16 @@ static void test_files(void)
     CHECK(system(path) == 0);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     quick = getenv("BIREF_TEST_QUICK") != NULL;
-    test_examples();
-    test_energy();
-    test_crossed();
-    test_analytic_vs_ground_truth();
-    test_grazing();
-    test_files();
-    return test_report("test_render");
+    static const test_case cases[] = {
+        {"examples", test_examples},
+        {"energy", test_energy},
+        {"crossed", test_crossed},
+        {"analytic_vs_ground_truth", test_analytic_vs_ground_truth},
+        {"grazing", test_grazing},
+        {"files", test_files},
+    };
+    return test_run_cases("test_render", cases, TEST_COUNT(cases), argc, argv);
 }

@@ -8,7 +8,7 @@
 #include <cjson/cJSON.h>
 
 #include "biref/biref.h"
-#include "test_util.h"
+#include "test_cases.h"
 
 static const char *const BASE =
     "{\"camera\": {\"position\": [0, 1, 4], \"look_at\": [0, 1, 0], \"up\": [0, 1, 0], \"fov_deg\": 40,"
@@ -267,10 +267,12 @@ static void test_validate(void)
     CHECK(biref_scene_validate(&sc, msg, sizeof msg) == BIREF_OK);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
-    test_good();
-    test_bad();
-    test_validate();
-    return test_report("test_scene");
+    static const test_case cases[] = {
+        {"good", test_good},
+        {"bad", test_bad},
+        {"validate", test_validate},
+    };
+    return test_run_cases("test_scene", cases, TEST_COUNT(cases), argc, argv);
 }

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 
 #include "biref/biref.h"
-#include "test_util.h"
+#include "test_cases.h"
 #include "textbook.h"
 
 static void random_slab(test_rng *r, biref_slab *s, double *theta, double *lambda)
@@ -22,58 +22,64 @@ static void random_slab(test_rng *r, biref_slab *s, double *theta, double *lambd
     *lambda = test_uniform(r, 380, 700);
 }
 
-int main(void)
+/* Isotropic limit: eta_o = eta_e reproduces Airy for s and p, complex amplitudes,
+ * for several axes (the o/e basis inside must not matter). */
+static void isotropic_limit(void)
 {
-    /* 1. Isotropic limit: eta_o = eta_e reproduces Airy for s and p, complex amplitudes,
-     * for several axes (the o/e basis inside must not matter). */
-    {
-        double axes[3][3] = {{0.3, 0.5, 0.8}, {1, 0, 0}, {0, 1, 0}};
-        for (int a = 0; a < 3; a++)
-            for (int t = 0; t < 40; t++) {
-                biref_slab s = {1.52, 1.52, {axes[a][0], axes[a][1], axes[a][2]}, 200.0 + 5000.0 * t,
-                                t % 2 ? 1.33 : 1.0};
-                double theta = (2.1 * t) * M_PI / 180, lambda = 400 + 7.0 * t;
-                biref_jones T, R;
-                CHECK(biref_slab_jones(&s, theta, lambda, &T, &R) == BIREF_OK);
-                for (int p = 0; p < 2; p++) {
-                    double complex ta, ra;
-                    tb_airy(p, s.eta_i, 1.52, s.thickness_nm, theta, lambda, &ta, &ra);
-                    CHECK(cabs(T.m[p][p] - ta) < 1e-10);
-                    CHECK(cabs(R.m[p][p] - ra) < 1e-10);
-                    CHECK(cabs(T.m[p][1 - p]) < 1e-10 && cabs(R.m[p][1 - p]) < 1e-10);
-                }
-            }
-    }
-    /* Frustrated total reflection: ambient denser than the (isotropic) slab, thin slab. */
-    {
-        biref_slab s = {1.2, 1.2, {0.2, 0.9, 0.1}, 150.0, 1.5};
-        double theta = 60 * M_PI / 180;
-        biref_jones T, R;
-        CHECK(biref_slab_jones(&s, theta, 500, &T, &R) == BIREF_OK);
-        for (int p = 0; p < 2; p++) {
-            double complex ta, ra;
-            tb_airy(p, 1.5, 1.2, 150.0, theta, 500, &ta, &ra);
-            CHECK(cabs(T.m[p][p] - ta) < 1e-10);
-            CHECK(cabs(R.m[p][p] - ra) < 1e-10);
-        }
-    }
-    /* 2. Energy: for every input polarisation sum T + sum R = 1 on random lossless slabs. */
-    {
-        test_rng rng = {0x1234567ULL};
-        for (int t = 0; t < 2000; t++) {
-            biref_slab s;
-            double theta, lambda;
-            random_slab(&rng, &s, &theta, &lambda);
+    double axes[3][3] = {{0.3, 0.5, 0.8}, {1, 0, 0}, {0, 1, 0}};
+    for (int a = 0; a < 3; a++)
+        for (int t = 0; t < 40; t++) {
+            biref_slab s = {1.52, 1.52, {axes[a][0], axes[a][1], axes[a][2]}, 200.0 + 5000.0 * t,
+                            t % 2 ? 1.33 : 1.0};
+            double theta = (2.1 * t) * M_PI / 180, lambda = 400 + 7.0 * t;
             biref_jones T, R;
             CHECK(biref_slab_jones(&s, theta, lambda, &T, &R) == BIREF_OK);
-            double PT[2][2], PR[2][2];
-            biref_jones_intensity(&T, PT);
-            biref_jones_intensity(&R, PR);
-            for (int i = 0; i < 2; i++) CHECK_NEAR(PT[i][0] + PT[i][1] + PR[i][0] + PR[i][1], 1.0, 1e-9);
+            for (int p = 0; p < 2; p++) {
+                double complex ta, ra;
+                tb_airy(p, s.eta_i, 1.52, s.thickness_nm, theta, lambda, &ta, &ra);
+                CHECK(cabs(T.m[p][p] - ta) < 1e-10);
+                CHECK(cabs(R.m[p][p] - ra) < 1e-10);
+                CHECK(cabs(T.m[p][1 - p]) < 1e-10 && cabs(R.m[p][1 - p]) < 1e-10);
+            }
         }
+}
+
+/* Frustrated total reflection: ambient denser than the (isotropic) slab, thin slab. */
+static void frustrated_total_reflection(void)
+{
+    biref_slab s = {1.2, 1.2, {0.2, 0.9, 0.1}, 150.0, 1.5};
+    double theta = 60 * M_PI / 180;
+    biref_jones T, R;
+    CHECK(biref_slab_jones(&s, theta, 500, &T, &R) == BIREF_OK);
+    for (int p = 0; p < 2; p++) {
+        double complex ta, ra;
+        tb_airy(p, 1.5, 1.2, 150.0, theta, 500, &ta, &ra);
+        CHECK(cabs(T.m[p][p] - ta) < 1e-10);
+        CHECK(cabs(R.m[p][p] - ra) < 1e-10);
     }
-    /* 3. Wave plate: normal incidence, axis in the surface plane. The eigenpolarisations are
-     * along and across the axis and each is an Airy slab of index eta_e / eta_o. */
+}
+
+/* Energy: for every input polarisation sum T + sum R = 1 on random lossless slabs. */
+static void energy(void)
+{
+    test_rng rng = {0x1234567ULL};
+    for (int t = 0; t < 2000; t++) {
+        biref_slab s;
+        double theta, lambda;
+        random_slab(&rng, &s, &theta, &lambda);
+        biref_jones T, R;
+        CHECK(biref_slab_jones(&s, theta, lambda, &T, &R) == BIREF_OK);
+        double PT[2][2], PR[2][2];
+        biref_jones_intensity(&T, PT);
+        biref_jones_intensity(&R, PR);
+        for (int i = 0; i < 2; i++) CHECK_NEAR(PT[i][0] + PT[i][1] + PR[i][0] + PR[i][1], 1.0, 1e-9);
+    }
+}
+
+/* Wave plate: normal incidence, axis in the surface plane. The eigenpolarisations are
+ * along and across the axis and each is an Airy slab of index eta_e / eta_o. */
+static void wave_plate(void)
+{
     for (int t = 0; t < 20; t++) {
         double phi = 0.3 + 0.13 * t, ne = 1.553, no = 1.544;
         biref_slab s = {no, ne, {cos(phi), 0, sin(phi)}, 20000.0 + 1000.0 * t, 1.0};
@@ -92,146 +98,179 @@ int main(void)
         tb_airy(0, 1.0, no, s.thickness_nm, 0, lambda, &to, &r);
         CHECK(cabs(ee - te) < 1e-10 && cabs(oo - to) < 1e-10);
     }
-    /* Index-matched surround: retardance = 2 pi d (n_e - n_o) / lambda without ripple. */
-    {
-        double ne = 1.5005, no = 1.5, phi = 0.6;
-        biref_slab s = {no, ne, {cos(phi), 0, sin(phi)}, 1e6, 1.50025};
-        double lambda = 550;
-        biref_jones T;
-        CHECK(biref_slab_jones(&s, 0.0, lambda, &T, NULL) == BIREF_OK);
-        double ve[2] = {cos(phi), sin(phi)}, vo[2] = {-sin(phi), cos(phi)};
-        double complex ee = 0, oo = 0;
-        for (int i = 0; i < 2; i++)
-            for (int j = 0; j < 2; j++) ee += ve[i] * T.m[i][j] * ve[j], oo += vo[i] * T.m[i][j] * vo[j];
-        double ret = carg(ee / oo), expect = remainder(2 * M_PI * s.thickness_nm * (ne - no) / lambda, 2 * M_PI);
-        CHECK_NEAR(remainder(ret - expect, 2 * M_PI), 0.0, 1e-6);
+}
+
+/* Index-matched surround: retardance = 2 pi d (n_e - n_o) / lambda without ripple. */
+static void index_matched_surround(void)
+{
+    double ne = 1.5005, no = 1.5, phi = 0.6;
+    biref_slab s = {no, ne, {cos(phi), 0, sin(phi)}, 1e6, 1.50025};
+    double lambda = 550;
+    biref_jones T;
+    CHECK(biref_slab_jones(&s, 0.0, lambda, &T, NULL) == BIREF_OK);
+    double ve[2] = {cos(phi), sin(phi)}, vo[2] = {-sin(phi), cos(phi)};
+    double complex ee = 0, oo = 0;
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++) ee += ve[i] * T.m[i][j] * ve[j], oo += vo[i] * T.m[i][j] * vo[j];
+    double ret = carg(ee / oo), expect = remainder(2 * M_PI * s.thickness_nm * (ne - no) / lambda, 2 * M_PI);
+    CHECK_NEAR(remainder(ret - expect, 2 * M_PI), 0.0, 1e-6);
+}
+
+/* Axis along the normal at normal incidence: degenerate modes, isotropic with eta_o. */
+static void axis_along_the_normal(void)
+{
+    biref_slab s = {1.6, 1.7, {0, 1, 0}, 3000, 1.0};
+    biref_jones T, R;
+    CHECK(biref_slab_jones(&s, 0.0, 600, &T, &R) == BIREF_OK);
+    for (int p = 0; p < 2; p++) {
+        double complex ta, ra;
+        tb_airy(p, 1.0, 1.6, 3000, 0, 600, &ta, &ra);
+        CHECK(cabs(T.m[p][p] - ta) < 1e-10 && cabs(R.m[p][p] - ra) < 1e-10);
     }
-    /* 4. Axis along the normal at normal incidence: degenerate modes, isotropic with eta_o. */
-    {
-        biref_slab s = {1.6, 1.7, {0, 1, 0}, 3000, 1.0};
+}
+
+/* Path expansion: the sum over paths of order <= n converges to the closed form, and the
+ * extracted appendix B (subtracting the primary's path once per round trip) does not. */
+static void path_expansion(void)
+{
+    test_rng rng = {0xabcdefULL};
+    int worse = 0, cases = 0;
+    for (int t = 0; t < 30; t++) {
+        biref_slab s;
+        double theta, lambda;
+        random_slab(&rng, &s, &theta, &lambda);
+        /* Indices 1.6-2.0 and theta <= 40 deg: high orders matter (round-trip amplitude
+         * up to ~0.15) yet the tail beyond order 8 stays below ~1e-8. */
+        s.eta_o = 1.6 + (s.eta_o - 1.3) * 0.5;
+        s.eta_e = s.eta_o + (s.eta_e - s.eta_o) * 0.5;
+        theta *= 40.0 / 89.0;
+        biref_slab_state st;
+        CHECK(biref_slab_prepare(&s, theta, &st) == BIREF_OK);
         biref_jones T, R;
-        CHECK(biref_slab_jones(&s, 0.0, 600, &T, &R) == BIREF_OK);
-        for (int p = 0; p < 2; p++) {
-            double complex ta, ra;
-            tb_airy(p, 1.0, 1.6, 3000, 0, 600, &ta, &ra);
-            CHECK(cabs(T.m[p][p] - ta) < 1e-10 && cabs(R.m[p][p] - ra) < 1e-10);
-        }
-    }
-    /* 5. Path expansion: the sum over paths of order <= n converges to the closed form, and the
-     * extracted appendix B (subtracting the primary's path once per round trip) does not. */
-    {
-        test_rng rng = {0xabcdefULL};
-        int worse = 0, cases = 0;
-        for (int t = 0; t < 30; t++) {
-            biref_slab s;
-            double theta, lambda;
-            random_slab(&rng, &s, &theta, &lambda);
-            /* Indices 1.6-2.0 and theta <= 40 deg: high orders matter (round-trip amplitude
-             * up to ~0.15) yet the tail beyond order 8 stays below ~1e-8. */
-            s.eta_o = 1.6 + (s.eta_o - 1.3) * 0.5;
-            s.eta_e = s.eta_o + (s.eta_e - s.eta_o) * 0.5;
-            theta *= 40.0 / 89.0;
-            biref_slab_state st;
-            CHECK(biref_slab_prepare(&s, theta, &st) == BIREF_OK);
-            biref_jones T, R;
-            biref_slab_jones_at(&st, lambda, &T, &R);
-            for (int which = 0; which < 2; which++) {
-                size_t n = biref_path_count(which, 8);
-                biref_path *paths = malloc(n * sizeof *paths);
-                CHECK(biref_slab_paths(&st, which, 8, paths, n) == n);
-                CHECK(biref_slab_paths(&st, which, 8, paths, n - 1) == 0);
-                double complex sum[2][2] = {{0}}, bad[2][2] = {{0}};
-                double k = 2 * M_PI / lambda;
-                for (size_t p = 0; p < n; p++) {
-                    double complex ph = cexp(I * k * paths[p].opl_nm);
-                    /* Appendix B as extracted: each round trip subtracts 2 P_o (the primary path). */
-                    int trips = paths[p].order;
-                    double complex phb = cexp(I * k * (paths[p].opl_nm - 2.0 * trips * st.opl_down[0]));
-                    for (int i = 0; i < 2; i++)
-                        for (int j = 0; j < 2; j++) sum[i][j] += paths[p].amp[i][j] * ph, bad[i][j] += paths[p].amp[i][j] * phb;
-                }
-                const biref_jones *J = which ? &R : &T;
-                double err = 0, errb = 0;
+        biref_slab_jones_at(&st, lambda, &T, &R);
+        for (int which = 0; which < 2; which++) {
+            size_t n = biref_path_count(which, 8);
+            biref_path *paths = malloc(n * sizeof *paths);
+            CHECK(biref_slab_paths(&st, which, 8, paths, n) == n);
+            CHECK(biref_slab_paths(&st, which, 8, paths, n - 1) == 0);
+            double complex sum[2][2] = {{0}}, bad[2][2] = {{0}};
+            double k = 2 * M_PI / lambda;
+            for (size_t p = 0; p < n; p++) {
+                double complex ph = cexp(I * k * paths[p].opl_nm);
+                /* Appendix B as extracted: each round trip subtracts 2 P_o (the primary path). */
+                int trips = paths[p].order;
+                double complex phb = cexp(I * k * (paths[p].opl_nm - 2.0 * trips * st.opl_down[0]));
                 for (int i = 0; i < 2; i++)
-                    for (int j = 0; j < 2; j++) err = fmax(err, cabs(sum[i][j] - J->m[i][j])), errb = fmax(errb, cabs(bad[i][j] - J->m[i][j]));
-                CHECK(err < 2e-8);
-                cases++;
-                worse += errb > 1e-3;
-                free(paths);
+                    for (int j = 0; j < 2; j++) sum[i][j] += paths[p].amp[i][j] * ph, bad[i][j] += paths[p].amp[i][j] * phb;
             }
-        }
-        CHECK(worse > cases / 2);
-    }
-    /* 5b. Flipping a prepared state (light from the other face) equals preparing the slab with
-     * the axis rotated by 180 degrees about z, complex amplitudes included. */
-    {
-        test_rng rng = {0xf11bULL};
-        double worst = 0;
-        for (int t = 0; t < 300; t++) {
-            biref_slab s;
-            double theta, lambda;
-            random_slab(&rng, &s, &theta, &lambda);
-            biref_slab_state a, b, f;
-            CHECK(biref_slab_prepare(&s, theta, &a) == BIREF_OK);
-            biref_slab rot = s;
-            rot.axis[0] = -s.axis[0];
-            rot.axis[1] = -s.axis[1];
-            CHECK(biref_slab_prepare(&rot, theta, &b) == BIREF_OK);
-            biref_slab_state_flip(&a, &f);
-            biref_jones Tb, Rb, Tf, Rf;
-            biref_slab_jones_at(&b, lambda, &Tb, &Rb);
-            biref_slab_jones_at(&f, lambda, &Tf, &Rf);
+            const biref_jones *J = which ? &R : &T;
+            double err = 0, errb = 0;
             for (int i = 0; i < 2; i++)
-                for (int o = 0; o < 2; o++)
-                    worst = fmax(worst, fmax(cabs(Tb.m[i][o] - Tf.m[i][o]), cabs(Rb.m[i][o] - Rf.m[i][o])));
-            for (int m = 0; m < 4; m++) CHECK(cabs(f.modes.q[m] - b.modes.q[m]) < 1e-12);
+                for (int j = 0; j < 2; j++) err = fmax(err, cabs(sum[i][j] - J->m[i][j])), errb = fmax(errb, cabs(bad[i][j] - J->m[i][j]));
+            CHECK(err < 2e-8);
+            cases++;
+            worse += errb > 1e-3;
+            free(paths);
         }
-        CHECK(worst < 1e-12);
     }
-    /* Path counts: 2^(2n+1) transmitted and 2^(2n) reflected paths of order n. */
+    CHECK(worse > cases / 2);
+}
+
+/* Flipping a prepared state (light from the other face) equals preparing the slab with
+ * the axis rotated by 180 degrees about z, complex amplitudes included. */
+static void flipping_a_prepared_state(void)
+{
+    test_rng rng = {0xf11bULL};
+    double worst = 0;
+    for (int t = 0; t < 300; t++) {
+        biref_slab s;
+        double theta, lambda;
+        random_slab(&rng, &s, &theta, &lambda);
+        biref_slab_state a, b, f;
+        CHECK(biref_slab_prepare(&s, theta, &a) == BIREF_OK);
+        biref_slab rot = s;
+        rot.axis[0] = -s.axis[0];
+        rot.axis[1] = -s.axis[1];
+        CHECK(biref_slab_prepare(&rot, theta, &b) == BIREF_OK);
+        biref_slab_state_flip(&a, &f);
+        biref_jones Tb, Rb, Tf, Rf;
+        biref_slab_jones_at(&b, lambda, &Tb, &Rb);
+        biref_slab_jones_at(&f, lambda, &Tf, &Rf);
+        for (int i = 0; i < 2; i++)
+            for (int o = 0; o < 2; o++)
+                worst = fmax(worst, fmax(cabs(Tb.m[i][o] - Tf.m[i][o]), cabs(Rb.m[i][o] - Rf.m[i][o])));
+        for (int m = 0; m < 4; m++) CHECK(cabs(f.modes.q[m] - b.modes.q[m]) < 1e-12);
+    }
+    CHECK(worst < 1e-12);
+}
+
+/* Path counts: 2^(2n+1) transmitted and 2^(2n) reflected paths of order n. */
+static void path_counts(void)
+{
     CHECK(biref_path_count(BIREF_TRANSMISSION, 0) == 2);
     CHECK(biref_path_count(BIREF_TRANSMISSION, 2) == 2 + 8 + 32);
     CHECK(biref_path_count(BIREF_REFLECTION, 2) == 1 + 4 + 16);
     CHECK(biref_path_count(BIREF_REFLECTION, 13) == 0);
-    /* 5c. A huge or tiny (but non-zero) finite axis means the same direction: no overflow. */
-    {
-        biref_slab a = {1.5, 1.6, {1, 0, 1}, 5000, 1.0}, b = a, c = a;
-        b.axis[0] = b.axis[2] = 1e300;
-        c.axis[0] = c.axis[2] = 1e-6;
-        biref_jones Ta, Tb, Tc;
-        CHECK(biref_slab_jones(&a, 0.5, 550, &Ta, NULL) == BIREF_OK);
-        CHECK(biref_slab_jones(&b, 0.5, 550, &Tb, NULL) == BIREF_OK);
-        CHECK(biref_slab_jones(&c, 0.5, 550, &Tc, NULL) == BIREF_OK);
-        for (int i = 0; i < 2; i++)
-            for (int o = 0; o < 2; o++) CHECK(cabs(Ta.m[i][o] - Tb.m[i][o]) < 1e-14 && cabs(Ta.m[i][o] - Tc.m[i][o]) < 1e-14);
-        double u[3], zero[3] = {0, 0, 1e-13};
-        CHECK(biref_axis_normalize(b.axis, u) == BIREF_OK && fabs(u[0] - M_SQRT1_2) < 1e-15 && u[1] == 0.0);
-        CHECK(biref_axis_normalize(zero, u) == BIREF_ERR_INVALID);
-    }
-    /* 6. Bad input. */
-    {
-        biref_slab good = {1.5, 1.6, {0, 0, 1}, 1000, 1.0};
-        biref_jones T;
-        CHECK(biref_slab_jones(&good, 0.1, 500, &T, NULL) == BIREF_OK);
-        biref_slab b = good;
-        b.eta_o = NAN;
-        CHECK(biref_slab_jones(&b, 0.1, 500, &T, NULL) == BIREF_ERR_INVALID);
-        b = good;
-        b.eta_e = 0;
-        CHECK(biref_slab_jones(&b, 0.1, 500, &T, NULL) == BIREF_ERR_INVALID);
-        b = good;
-        b.eta_i = INFINITY;
-        CHECK(biref_slab_jones(&b, 0.1, 500, &T, NULL) == BIREF_ERR_INVALID);
-        b = good;
-        b.axis[2] = 0;
-        CHECK(biref_slab_jones(&b, 0.1, 500, &T, NULL) == BIREF_ERR_INVALID);
-        b = good;
-        b.thickness_nm = -1;
-        CHECK(biref_slab_jones(&b, 0.1, 500, &T, NULL) == BIREF_ERR_INVALID);
-        CHECK(biref_slab_jones(&good, M_PI / 2, 500, &T, NULL) == BIREF_ERR_INVALID);
-        CHECK(biref_slab_jones(&good, -0.01, 500, &T, NULL) == BIREF_ERR_INVALID);
-        CHECK(biref_slab_jones(&good, 0.1, 0, &T, NULL) == BIREF_ERR_INVALID);
-        CHECK(biref_slab_jones(&good, 0.1, NAN, &T, NULL) == BIREF_ERR_INVALID);
-    }
-    return test_report("test_slab");
+}
+
+/* A huge or tiny (but non-zero) finite axis means the same direction: no overflow. */
+static void huge_or_tiny_axis(void)
+{
+    biref_slab a = {1.5, 1.6, {1, 0, 1}, 5000, 1.0}, b = a, c = a;
+    b.axis[0] = b.axis[2] = 1e300;
+    c.axis[0] = c.axis[2] = 1e-6;
+    biref_jones Ta, Tb, Tc;
+    CHECK(biref_slab_jones(&a, 0.5, 550, &Ta, NULL) == BIREF_OK);
+    CHECK(biref_slab_jones(&b, 0.5, 550, &Tb, NULL) == BIREF_OK);
+    CHECK(biref_slab_jones(&c, 0.5, 550, &Tc, NULL) == BIREF_OK);
+    for (int i = 0; i < 2; i++)
+        for (int o = 0; o < 2; o++) CHECK(cabs(Ta.m[i][o] - Tb.m[i][o]) < 1e-14 && cabs(Ta.m[i][o] - Tc.m[i][o]) < 1e-14);
+    double u[3], zero[3] = {0, 0, 1e-13};
+    CHECK(biref_axis_normalize(b.axis, u) == BIREF_OK && fabs(u[0] - M_SQRT1_2) < 1e-15 && u[1] == 0.0);
+    CHECK(biref_axis_normalize(zero, u) == BIREF_ERR_INVALID);
+}
+
+/* Bad input. */
+static void bad_input(void)
+{
+    biref_slab good = {1.5, 1.6, {0, 0, 1}, 1000, 1.0};
+    biref_jones T;
+    CHECK(biref_slab_jones(&good, 0.1, 500, &T, NULL) == BIREF_OK);
+    biref_slab b = good;
+    b.eta_o = NAN;
+    CHECK(biref_slab_jones(&b, 0.1, 500, &T, NULL) == BIREF_ERR_INVALID);
+    b = good;
+    b.eta_e = 0;
+    CHECK(biref_slab_jones(&b, 0.1, 500, &T, NULL) == BIREF_ERR_INVALID);
+    b = good;
+    b.eta_i = INFINITY;
+    CHECK(biref_slab_jones(&b, 0.1, 500, &T, NULL) == BIREF_ERR_INVALID);
+    b = good;
+    b.axis[2] = 0;
+    CHECK(biref_slab_jones(&b, 0.1, 500, &T, NULL) == BIREF_ERR_INVALID);
+    b = good;
+    b.thickness_nm = -1;
+    CHECK(biref_slab_jones(&b, 0.1, 500, &T, NULL) == BIREF_ERR_INVALID);
+    CHECK(biref_slab_jones(&good, M_PI / 2, 500, &T, NULL) == BIREF_ERR_INVALID);
+    CHECK(biref_slab_jones(&good, -0.01, 500, &T, NULL) == BIREF_ERR_INVALID);
+    CHECK(biref_slab_jones(&good, 0.1, 0, &T, NULL) == BIREF_ERR_INVALID);
+    CHECK(biref_slab_jones(&good, 0.1, NAN, &T, NULL) == BIREF_ERR_INVALID);
+}
+
+int main(int argc, char **argv)
+{
+    static const test_case cases[] = {
+        {"isotropic_limit", isotropic_limit},
+        {"frustrated_total_reflection", frustrated_total_reflection},
+        {"energy", energy},
+        {"wave_plate", wave_plate},
+        {"index_matched_surround", index_matched_surround},
+        {"axis_along_the_normal", axis_along_the_normal},
+        {"path_expansion", path_expansion},
+        {"flipping_a_prepared_state", flipping_a_prepared_state},
+        {"path_counts", path_counts},
+        {"huge_or_tiny_axis", huge_or_tiny_axis},
+        {"bad_input", bad_input},
+    };
+    return test_run_cases("test_slab", cases, TEST_COUNT(cases), argc, argv);
 }

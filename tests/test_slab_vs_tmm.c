@@ -6,7 +6,7 @@
 #include <math.h>
 
 #include "biref/biref.h"
-#include "test_util.h"
+#include "test_cases.h"
 
 static void random_slab(test_rng *r, biref_slab *s, double *theta, double *lambda, double d_min, double d_max,
                         double n_lo, double n_hi)
@@ -40,9 +40,11 @@ static int compare(const biref_slab *s, double theta, double lambda, double *wor
     return 1;
 }
 
-int main(void)
+/* One stream of draws for all cases, in table order. */
+static test_rng rng = {0xC0FFEEULL};
+
+static void propagating_slabs_match_tmm(void)
 {
-    test_rng rng = {0xC0FFEEULL};
     double worst_amp = 0, worst_pow = 0;
     int ran = 0, total = 2000;
     for (int t = 0; t < total; t++) {
@@ -56,9 +58,12 @@ int main(void)
     CHECK(ran > total * 0.95);
     CHECK(worst_amp < 1e-9); /* measured 3.8e-11 */
     CHECK(worst_pow < 1e-9);
+}
 
-    /* Evanescent modes inside (slab indices below eta_i sin theta): thin slabs, where the
-     * transfer matrix stays well conditioned. */
+/* Evanescent modes inside (slab indices below eta_i sin theta): thin slabs, where the
+ * transfer matrix stays well conditioned. */
+static void evanescent_modes_inside(void)
+{
     double wa = 0, wp = 0;
     int ev = 0, ran_ev = 0;
     for (int t = 0; t < 1000; t++) {
@@ -77,5 +82,13 @@ int main(void)
     CHECK(ev > 100 && ran_ev > ev / 2);
     CHECK(wa < 1e-9);
     CHECK(wp < 1e-9);
-    return test_report("test_slab_vs_tmm");
+}
+
+int main(int argc, char **argv)
+{
+    static const test_case cases[] = {
+        {"propagating_slabs_match_tmm", propagating_slabs_match_tmm},
+        {"evanescent_modes_inside", evanescent_modes_inside},
+    };
+    return test_run_cases("test_slab_vs_tmm", cases, TEST_COUNT(cases), argc, argv);
 }

@@ -18,7 +18,7 @@
 #include <stdio.h>
 
 #include "biref/optics.h"
-#include "test_util.h"
+#include "test_cases.h"
 
 static const double PI = 3.14159265358979323846;
 
@@ -435,14 +435,16 @@ static void test_illcond(void)
     CHECK(biref_slab_jones_tmm(&s, deg(70.0), 550.0, &T, &R) == BIREF_ERR_ILLCOND);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
-    test_airy();
-    test_energy();
-    test_wave_plate();
-    test_plane_of_incidence();
-    test_axis_sign();
-    test_invalid();
-    test_illcond();
-    return test_report("test_tmm");
+    static const test_case cases[] = {
+        {"airy", test_airy},
+        {"energy", test_energy},
+        {"wave_plate", test_wave_plate},
+        {"plane_of_incidence", test_plane_of_incidence},
+        {"axis_sign", test_axis_sign},
+        {"invalid", test_invalid},
+        {"illcond", test_illcond},
+    };
+    return test_run_cases("test_tmm", cases, TEST_COUNT(cases), argc, argv);
 }

@@ -3,7 +3,7 @@
 // ?scene=NAME&width=W&height=H&view=canvas shows only the canvas at W x H with that example's
 // camera and sets document.title to "biref ready" once the frame is drawn. The first slab's
 // controls may be set from the query too: eta_o, eta_e, thickness_um, axis_tilt, axis_az (deg).
-import { shaderSource, table, presets } from './biref_data.js';
+import { shaderSource, table, plans, presets } from './biref_data.js';
 
 const MAX_SLABS = 8, MAX_PANELS = 4;
 const params = new URLSearchParams(location.search);
@@ -14,7 +14,7 @@ if (canvasOnly) document.body.classList.add('canvas-only');
 
 function fail(text) {
   $('error').textContent = text;
-  document.title = 'biref error: ' + text.split('\n')[0];
+  document.title = 'biref error: ' + text.replace(/\s+/g, ' ').slice(0, 400);
   throw new Error(text);
 }
 
@@ -46,6 +46,15 @@ gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
 gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
 gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, table.width, table.height, 0, gl.RGBA, gl.FLOAT, table.texels);
 gl.uniform1i(gl.getUniformLocation(prog, 'u_lut'), 0);
+// The coherent regime's sample plans (thin slabs, evanescent coupling) on texture unit 1.
+const planTex = gl.createTexture();
+gl.activeTexture(gl.TEXTURE1);
+gl.bindTexture(gl.TEXTURE_2D, planTex);
+gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, plans.width, plans.height, 0, gl.RGBA, gl.FLOAT, plans.texels);
+gl.uniform1i(gl.getUniformLocation(prog, 'u_plans'), 1);
+gl.activeTexture(gl.TEXTURE0);
 const timerExt = gl.getExtension('EXT_disjoint_timer_query_webgl2');
 
 // ---------------------------------------------------------------------------- scene state

@@ -32,7 +32,18 @@ typedef struct {
 /* Fills info and, if texels is not NULL, width * height * 4 floats. */
 BIREF_API void biref_gl_table(const biref_spectral *sp, biref_gl_table_info *info, float *texels);
 
-/* Every uniform of the scene shader except the sampler u_lut, as (name, components 1-4, array
+/* The midpoint plans of the coherent regime (thin slabs, evanescent coupling; the exact integral
+ * of eq. 17, src/spectral/coherent.c) as an RGBA float texture of width x height texels, row-major:
+ * plan i has first_samples * 2^i samples starting at texel first_samples * (2^i - 1), each texel
+ * (lambda_nm, w_x, w_y, w_z). */
+typedef struct {
+    int width, height, plans, first_samples;
+} biref_gl_plans_info;
+
+/* Fills info and, if texels is not NULL, width * height * 4 floats (unused texels 0). */
+BIREF_API void biref_gl_coherent_plans(const biref_spectral *sp, biref_gl_plans_info *info, float *texels);
+
+/* Every uniform of the scene shader except the samplers u_lut and u_plans, as (name, components 1-4, array
  * count, values): camera, slabs, panels, environment, polarizer and analyzer, look-up-table
  * constants and the XYZ -> linear sRGB matrix. The scene must be valid (biref_scene_validate). */
 typedef void (*biref_gl_uniform_fn)(void *user, const char *name, int components, int count, const float *v);

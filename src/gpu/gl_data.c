@@ -40,6 +40,28 @@ void biref_gl_table(const biref_spectral *sp, biref_gl_table_info *info, float *
     }
 }
 
+#define PLANS_WIDTH 2048
+
+void biref_gl_coherent_plans(const biref_spectral *sp, biref_gl_plans_info *info, float *texels)
+{
+    size_t total = 0;
+    for (int i = 0; i < sp->n_coherent; i++) total += (size_t)sp->coherent[i]->samples;
+    info->width = PLANS_WIDTH;
+    info->height = (int)((total + PLANS_WIDTH - 1) / PLANS_WIDTH);
+    info->plans = sp->n_coherent;
+    info->first_samples = sp->n_coherent ? sp->coherent[0]->samples : 0;
+    if (!texels) return;
+    memset(texels, 0, (size_t)info->width * info->height * 4 * sizeof *texels);
+    size_t t = 0;
+    for (int i = 0; i < sp->n_coherent; i++) {
+        const biref_numeric_plan *p = sp->coherent[i];
+        for (int n = 0; n < p->samples; n++, t++) {
+            texels[4 * t] = (float)p->lambda[n];
+            for (int j = 0; j < 3; j++) texels[4 * t + 1 + j] = (float)p->weight[n][j];
+        }
+    }
+}
+
 static void emit1(biref_gl_uniform_fn fn, void *user, const char *name, double v)
 {
     float f = (float)v;
@@ -168,4 +190,8 @@ void biref_gl_scene_uniforms(const biref_scene *scene, const biref_spectral *sp,
     emitv(fn, user, "u_lut_edge_lo", 3, t.edge_lo);
     emitv(fn, user, "u_lut_edge_hi", 3, t.edge_hi);
     emitv(fn, user, "u_k_centroid", 3, t.k_centroid);
+    biref_gl_plans_info pl;
+    biref_gl_coherent_plans(sp, &pl, NULL);
+    double plan_grid[4] = {pl.width, pl.plans, pl.first_samples, 0.0};
+    emitv(fn, user, "u_plan_grid", 4, plan_grid);
 }

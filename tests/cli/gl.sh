@@ -20,7 +20,12 @@ if [ "$rc" -ne 1 ] || [ "$(wc -l <"$tmpdir/err")" -ne 1 ] || [ -e "$tmpdir/none.
   echo "FAIL (no EGL vendor): rc=$rc"; sed 's/^/  stderr: /' "$tmpdir/err"; fails=$((fails + 1))
 fi
 
-for scene in examples/*.json; do
+# Beyond the examples: thin slabs (the coherent regime: the exact integral of the closed form)
+# and a dense surround with total reflection inside the slabs (evanescent legs).
+sed -e 's/"thickness_um": 45/"thickness_um": 4/' -e 's/"thickness_um": 70/"thickness_um": 7/' \
+    -e 's/"thickness_um": 110/"thickness_um": 11/' examples/default.json >"$tmpdir/thin.json"
+sed -e 's/"eta": 1.0/"eta": 1.7/' examples/default.json >"$tmpdir/dense_surround.json"
+for scene in examples/*.json "$tmpdir/thin.json" "$tmpdir/dense_surround.json"; do
   name=$(basename "$scene" .json)
   method=()
   # World-fixed polarizers: the CPU's analytic method refuses them, the expansion is its reference.

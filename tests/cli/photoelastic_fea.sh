@@ -58,6 +58,9 @@ expect_error "bad unit" photoelastic --stress-nodes "$tmpdir/fea.csv" --length-u
 expect_error "columns without nodes" photoelastic --preset disk --columns sxx=a -o "$tmpdir/x.png"
 expect_error "two fields" photoelastic --preset disk --stress-nodes "$tmpdir/fea.csv" -o "$tmpdir/x.png"
 expect_error "missing file" photoelastic --stress-nodes "$tmpdir/none.csv" -o "$tmpdir/x.png"
+cp "$tmpdir/fea.csv" "$tmpdir/same.csv"
+expect_error "output over the input" photoelastic --stress-nodes "$tmpdir/same.csv" --columns sxx=s11,syy=s22,txy=s12 \
+  --map isoclinic -o "$tmpdir/same.csv"
 expect_error "bad map" photoelastic --preset disk --map stress -o "$tmpdir/x.pfm"
 expect_error "map extension" photoelastic --preset disk --map isoclinic -o "$tmpdir/x.png"
 finish

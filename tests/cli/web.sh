@@ -56,6 +56,11 @@ sed -e 's/"thickness_mm": 1.15/"thickness_mm": 1.25/' -e 's/"eta_o": 1.775/"eta_
 expect_ok "changed cpu" render "$tmpdir/changed.json" -o "$tmpdir/changed-cpu.png" --width $W --height $H --quiet
 pages+=("$url?scene=fig9c&width=$W&height=$H&view=canvas&thickness_um=1250&eta_o=1.7" "$tmpdir/changed-web.png")
 
+# A thin slab through the controls: the coherent regime (exact integral of the closed form).
+sed -e 's/"thickness_um": 45/"thickness_um": 4/' examples/default.json >"$tmpdir/thin.json"
+expect_ok "thin cpu" render "$tmpdir/thin.json" -o "$tmpdir/thin-cpu.png" --width $W --height $H --quiet
+pages+=("$url?scene=default&width=$W&height=$H&view=canvas&thickness_um=4" "$tmpdir/thin-web.png")
+
 if ! /usr/bin/python3 tests/web/screenshot.py $W $H "${pages[@]}" 2>"$tmpdir/shot.err"; then
   echo "FAIL: screenshots:"; sed 's/^/  /' "$tmpdir/shot.err"; fails=$((fails + 1))
 else
@@ -64,6 +69,7 @@ else
     check_close "$name" "$tmpdir/$name-web.png" "$tmpdir/$name-cpu.png"
   done
   check_close "changed through the controls" "$tmpdir/changed-web.png" "$tmpdir/changed-cpu.png"
+  check_close "thin slab through the controls" "$tmpdir/thin-web.png" "$tmpdir/thin-cpu.png"
   # ... and the comparison can fail: the changed page is far from the unchanged scene.
   expect_ok "changed vs unchanged" diff "$tmpdir/changed-web.png" "$tmpdir/fig9c-cpu.png" --json
   mean=$(json_num mean "$tmpdir/out")

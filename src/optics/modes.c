@@ -67,7 +67,6 @@ static void sp_fields(double complex q, double K, double eta, double complex Es[
 
 static void finish_mode(biref_modes *m, int idx, double K)
 {
-    curl_field(m->q[idx], K, m->E[idx], m->H[idx]);
     poynting_dir(m->E[idx], m->H[idx], m->poynting[idx]);
     double complex q = m->q[idx];
     m->eta_eff[idx] = (fabs(cimag(q)) > 0.0) ? NAN : sqrt(creal(q) * creal(q) + K * K); /* eq. 5 */
@@ -102,7 +101,7 @@ void biref_isotropic_modes(double eta, double K, biref_modes *m)
  * point o and e are degenerate and any orthogonal transverse pair is an exact basis. */
 #define DEGENERATE_REL 1e-9
 
-void biref_uniaxial_modes(double eta_o, double eta_e, const double A[3], double K, biref_modes *m)
+void biref_uniaxial_mode_fields(double eta_o, double eta_e, const double A[3], double K, biref_modes *m)
 {
     memset(m, 0, sizeof *m);
     m->K = K;
@@ -159,6 +158,13 @@ void biref_uniaxial_modes(double eta_o, double eta_e, const double A[3], double 
             scale3(Ee, 1.0 / ne);
         }
     }
+    /* H = k x E: the interface solves need it. */
+    for (int i = 0; i < 4; i++) curl_field(m->q[i], K, m->E[i], m->H[i]);
+}
+
+void biref_uniaxial_modes(double eta_o, double eta_e, const double A[3], double K, biref_modes *m)
+{
+    biref_uniaxial_mode_fields(eta_o, eta_e, A, K, m);
     for (int i = 0; i < 4; i++) finish_mode(m, i, K);
 }
 

@@ -37,12 +37,12 @@
  * here (docs/ACCURACY.md). */
 #define COHERENT_ROUND_TRIP_NM 10000.0
 /* Orders resolved by the quadrature: up to where the round-trip amplitude has fallen below this. */
-#define ORDER_AMPLITUDE_FLOOR 1e-4
+#define ORDER_AMPLITUDE_FLOOR 1e-3
 /* Midpoint samples per local period of the highest significant frequency at the short end of the
  * band, where e^{2 pi i D / lambda} turns fastest (2 pi D / lambda^2 per nm). The colour-matching
  * weights vanish towards both ends of the band, so the rule converges much faster than its
  * generic O(h^2) once the integrand is resolved. */
-#define SAMPLES_PER_PERIOD 8.0
+#define SAMPLES_PER_PERIOD 4.0
 #define MIN_SAMPLES 48.0
 
 static inline double abs2(double complex z) { return creal(z) * creal(z) + cimag(z) * cimag(z); }

@@ -45,6 +45,11 @@ struct biref_numeric_plan {
 void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
                           double H[2][2][3]);
 
+/* sum_{i,o} w_in[i] out_mask[o] (E + 2 H)[i][o] of biref_analytic_terms, the same quantity with
+ * the weights folded in before the band integrals (src/spectral/analytic_mixed.c). */
+void biref_analytic_mixed(const biref_spectral *sp, const biref_slab_state *st, int which, const double w_in[2],
+                          const double out_mask[2], double xyz[3]);
+
 /* Makes a result X [direction T/R][in][out][band] physical given the incoherent path energies E
  * (src/spectral/analytic.c): every entry >= 0 (X moved towards E where needed) and the sum over
  * outputs and directions exactly 1 per input and band (energy balance of a lossless slab). */

@@ -1,0 +1,45 @@
+/* Shared by the figures of `biref figure` (cmd_figure.c, fig_spectral.c): the run's context and
+ * the helpers that write CSV files and plots. */
+#ifndef BIREF_CLI_FIG_COMMON_H
+#define BIREF_CLI_FIG_COMMON_H
+
+#include <cairo.h>
+#include <math.h>
+#include <stddef.h>
+
+#include "biref/biref.h"
+#include "io/outfile.h"
+
+#define FIG_CMD "figure"
+
+typedef struct {
+    const char *dir;
+    int quick;
+    int threads; /* 0 = OpenMP default */
+    biref_spectral *sp;
+    biref_numeric_plan *gt; /* 16384-sample ground-truth plan */
+} fig_ctx;
+
+/* DIR/NAME. */
+void fig_out_path(const fig_ctx *c, const char *name, char *buf, size_t len);
+/* Output files through io/outfile.h: in place only once complete. NULL after an error line. */
+biref_outfile *fig_open_out(const char *path);
+biref_outfile *fig_open_csv(const fig_ctx *c, const char *name, char *path, size_t len);
+/* Commits the file and says so on stdout; -1 after an error line. */
+int fig_close_csv(biref_outfile *o, const char *path);
+void fig_discard(biref_outfile *o);
+/* A PLplot page (fig_plot.h) begun and ended with one error line on failure. */
+int fig_begin(const char *path, int width, int height, int nx, int ny);
+int fig_end(const char *path);
+/* cairo's PNG stream writer into a FILE *. */
+cairo_status_t fig_write_stream(void *closure, const unsigned char *data, unsigned int length);
+static inline double fig_deg2rad(double d) { return d * M_PI / 180.0; }
+void fig_chromaticity(const double xyz[3], double *x, double *y);
+int fig_cmp_double(const void *a, const void *b);
+
+/* The figures of fig_spectral.c (slab colours, no rendering). Each returns a CLI exit code. */
+int fig5(const fig_ctx *c);
+int fig6c(const fig_ctx *c);
+int fig7(const fig_ctx *c);
+
+#endif

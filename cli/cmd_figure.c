@@ -336,6 +336,30 @@ static int prepare_dir(const char *dir)
     return 0;
 }
 
+/* fig9 needs at least one of its scenes, table1 needs fig9a; a scene that is present must load. */
+static int check_scenes(const char *scenes, int fig9_on, int table1_on)
+{
+    struct stat st;
+    if (stat(scenes, &st) != 0 || !S_ISDIR(st.st_mode))
+        return cli_error(FIG_CMD, "--scenes: '%s' is not a directory", scenes), -1;
+    static const char *const names[3] = {"fig9a", "fig9b", "fig9c"};
+    int found = 0;
+    for (int i = 0; i < 3; i++) {
+        char path[4096], msg[256];
+        snprintf(path, sizeof path, "%s/%s.json", scenes, names[i]);
+        if (access(path, F_OK) != 0) {
+            if (i == 0 && table1_on) return cli_error(FIG_CMD, "table1: %s not found", path), -1;
+            continue;
+        }
+        biref_scene sc;
+        if (biref_scene_load(path, &sc, msg, sizeof msg) != BIREF_OK)
+            return cli_error(FIG_CMD, "%s: %s", path, msg), -1;
+        found++;
+    }
+    if (fig9_on && !found) return cli_error(FIG_CMD, "fig9: no scene found in %s (fig9a/b/c.json)", scenes), -1;
+    return 0;
+}
+
 enum { OPT_QUICK = 1000, OPT_THREADS, OPT_SCENES };
 
 int cmd_figure(int argc, char **argv)
@@ -378,6 +402,8 @@ int cmd_figure(int argc, char **argv)
         return cli_error(FIG_CMD, "unknown figure '%s' (expected fig5, fig6c, fig7, fig9, table1, aliasing or all)", name),
                CLI_EXIT_USAGE;
     if (!c.dir) return cli_error(FIG_CMD, "missing -o DIR"), CLI_EXIT_USAGE;
+    /* Everything the figures read is checked before the first one is computed. */
+    if ((sel[3] || sel[4]) && check_scenes(scenes, sel[3], sel[4])) return CLI_EXIT_USAGE;
     if (prepare_dir(c.dir)) return CLI_EXIT_FAIL;
     if (c.threads > 0) omp_set_num_threads(c.threads);
 

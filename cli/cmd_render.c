@@ -186,10 +186,18 @@ int cmd_render(int argc, char **argv)
         free(rgb);
         return rc;
     }
-    if (!gl) biref_render_image(r, xyz, biref_progress_bar_update, &bar, &stats);
+    biref_status rs = gl ? BIREF_OK : biref_render_image(r, xyz, biref_progress_bar_update, &bar, &stats);
     double ms = 1e3 * (biref_wall_seconds() - t0);
     biref_progress_bar_finish(&bar);
     biref_renderer_destroy(r);
+    if (rs != BIREF_OK) {
+        free(xyz);
+        free(rgb);
+        return cli_error(CMD, "%s: %s", scene_path,
+                         rs == BIREF_ERR_ILLCOND ? "some pixels came out non-finite (no image written)"
+                                                 : biref_status_string(rs)),
+               CLI_EXIT_FAIL;
+    }
 
     biref_xyz_image_to_srgb8(xyz, n, rgb);
     char msg[600];

@@ -1,4 +1,5 @@
 /* The renderer object and the parallel row loop. */
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <omp.h>
@@ -185,12 +186,12 @@ biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_e
     const int W = r->cam.width;
     const int rows = (y_end - y_begin + y_step - 1) / y_step;
     const int threads = r->opt.threads > 0 ? r->opt.threads : omp_get_max_threads();
-    long slab_pixels = 0, fallbacks = 0;
+    long slab_pixels = 0, fallbacks = 0, nonfinite = 0;
     int done = 0;
     /* Rows are independent and every pixel is computed the same way on any thread, so the
      * image does not depend on the thread count; dynamic scheduling balances rows that miss
      * the slab (cheap) against rows that hit it (expensive). */
-#pragma omp parallel for schedule(dynamic) num_threads(threads) reduction(+ : slab_pixels, fallbacks)
+#pragma omp parallel for schedule(dynamic) num_threads(threads) reduction(+ : slab_pixels, fallbacks, nonfinite)
     for (int k = 0; k < rows; k++) {
         const int y = y_begin + k * y_step;
         float *row = xyz + (size_t)y * W * 3;
@@ -206,7 +207,10 @@ biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_e
             fallbacks += fb;
             for (int i = 0; i < 3; i++) {
                 double v = c[i] * r->exposure;
-                row[3 * x + i] = (float)(isfinite(v) ? v : 0.0);
+                /* Validated scenes keep v far inside float range; anything else is reported. */
+                const int ok = isfinite(v) && fabs(v) <= FLT_MAX;
+                nonfinite += !ok;
+                row[3 * x + i] = (float)(ok ? v : 0.0);
             }
         }
         if (progress) {
@@ -222,7 +226,8 @@ biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_e
         stats->slab_pixels = slab_pixels;
         stats->fallback_evals = fallbacks;
     }
-    return BIREF_OK;
+    /* A non-finite colour is never an output: such pixels are stored as 0 and reported. */
+    return nonfinite ? BIREF_ERR_ILLCOND : BIREF_OK;
 }
 
 biref_status biref_render_image(const biref_renderer *r, float *xyz, biref_progress_fn progress, void *progress_user,

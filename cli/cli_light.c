@@ -35,9 +35,11 @@ int cli_parse_polarization(const char *cmd, const char *opt, const char *text, d
         cli_error(cmd, "%s: fractions must be non-negative and not both zero, got '%s'", opt, text);
         return -1;
     }
-    /* Relative weights: the colour of the mix must not depend on how the user scales them. */
-    w_in[0] = w[0] / (w[0] + w[1]);
-    w_in[1] = w[1] / (w[0] + w[1]);
+    /* Relative weights: the colour of the mix must not depend on how the user scales them.
+     * Dividing by the larger weight first keeps the sum finite for weights near DBL_MAX. */
+    const double big = fmax(w[0], w[1]), a = w[0] / big, b = w[1] / big;
+    w_in[0] = a / (a + b);
+    w_in[1] = b / (a + b);
     return 0;
 }
 

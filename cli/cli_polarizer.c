@@ -43,6 +43,10 @@ int cli_parse_polarizer_state(const char *cmd, const char *opt, const char *text
 int cli_parse_stokes(const char *cmd, const char *opt, const char *text, double S[4])
 {
     if (cli_parse_list(cmd, opt, text, S, 4)) return -1;
+    if (!isfinite(fabs(S[0]) + fabs(S[1])) || !isfinite(fabs(S[2]) + fabs(S[3]))) {
+        cli_error(cmd, "%s: too large: S0 + S1 and S2 + S3 must stay finite (the scale only sets the brightness)", opt);
+        return -1;
+    }
     double complex C[2][2];
     if (biref_stokes_to_coherency(S, C) != BIREF_OK) {
         cli_error(cmd, "%s: not a physical Stokes vector (need S0 >= 0 and S1^2+S2^2+S3^2 <= S0^2)", opt);

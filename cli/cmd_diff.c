@@ -1,10 +1,12 @@
 /* biref diff: per-pixel CIEDE2000 between two PNGs, a colour-coded map and statistics. */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli_render.h"
+#include "de_scale.h"
 #include "commands.h"
 #include "json_out.h"
 
@@ -16,9 +18,12 @@ static void help(void)
            "Decodes both images as sRGB, converts each pixel to XYZ (white E) and computes the\n"
            "CIEDE2000 colour difference dE00. Prints the mean, 95th percentile and maximum, and\n"
            "optionally writes a difference map coloured on a fixed scale (linear between stops):\n"
-           "  dE00 0 black, 1 blue (about the threshold of visibility), 2 green, 4 red, >= 8 white.\n\n"
+           "  " CLI_DE_SCALE_TEXT ",\n"
+           "the scale of every dE00 map biref draws (biref figure fig9, aliasing), with a legend\n"
+           "strip below the map (--no-legend: the map alone, pixel for pixel).\n\n"
            "Options:\n"
            "  -o, --output FILE    write the difference map (PNG)\n"
+           "  --no-legend          write the map without the legend strip\n"
            "  --json               {width, height, mean, p95, p99, max, over_1, over_4} on stdout\n"
            "                       (over_N: fraction of pixels with dE00 > N)\n"
            "  -h, --help           this help\n\n"
@@ -26,17 +31,49 @@ static void help(void)
            "I/O failure, 2 on bad usage or unreadable/mismatched images.\n");
 }
 
-/* Fixed colour scale, so maps of different image pairs are comparable. */
-static void ramp(double de, unsigned char rgb[3])
+/* The map with the scale's legend below it (the canvas at least wide enough for the legend). */
+static int write_map_with_legend(const char *path, int w, int h, const unsigned char *map)
 {
-    static const double stop[5] = {0.0, 1.0, 2.0, 4.0, 8.0};
-    static const unsigned char col[5][3] = {{0, 0, 0}, {0, 60, 255}, {0, 220, 60}, {255, 30, 0}, {255, 255, 255}};
-    if (!(de > 0)) de = 0;
-    int i = 0;
-    while (i < 3 && de > stop[i + 1]) i++;
-    double t = (de - stop[i]) / (stop[i + 1] - stop[i]);
-    if (t > 1) t = 1;
-    for (int k = 0; k < 3; k++) rgb[k] = (unsigned char)lround(col[i][k] + t * (col[i + 1][k] - col[i][k]));
+    const int W = w > 320 ? w : 320, H = h + CLI_DE_LEGEND_HEIGHT + 8;
+    cairo_surface_t *s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, W, H);
+    cairo_t *cr = cairo_create(s);
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cairo_paint(cr);
+    cairo_surface_flush(s);
+    unsigned char *data = cairo_image_surface_get_data(s);
+    int stride = cairo_image_surface_get_stride(s);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            uint32_t *px = (uint32_t *)(data + (size_t)y * stride) + x;
+            const unsigned char *c = map + 3 * ((size_t)y * w + x);
+            *px = (uint32_t)c[0] << 16 | (uint32_t)c[1] << 8 | c[2];
+        }
+    cairo_surface_mark_dirty(s);
+    cli_de_legend(cr, 6, h + 6, W - 6, "dE00:");
+    cairo_surface_flush(s);
+    /* Written through biref_png_write_rgb8 (atomic: temporary file, then rename). */
+    unsigned char *rgb = malloc((size_t)W * H * 3);
+    int rc = CLI_EXIT_OK;
+    if (!rgb || cairo_status(cr) != CAIRO_STATUS_SUCCESS) {
+        cli_error(CMD, "cannot draw the map's legend");
+        rc = CLI_EXIT_FAIL;
+    } else {
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                uint32_t v = ((const uint32_t *)(data + (size_t)y * stride))[x];
+                unsigned char *o = rgb + 3 * ((size_t)y * W + x);
+                o[0] = (unsigned char)(v >> 16), o[1] = (unsigned char)(v >> 8), o[2] = (unsigned char)v;
+            }
+        char msg[256];
+        if (biref_png_write_rgb8(path, W, H, rgb, msg, sizeof msg) != BIREF_OK) {
+            cli_error(CMD, "%s", msg);
+            rc = CLI_EXIT_FAIL;
+        }
+    }
+    free(rgb);
+    cairo_destroy(cr);
+    cairo_surface_destroy(s);
+    return rc;
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -47,11 +84,14 @@ static int cmp_double(const void *a, const void *b)
 
 int cmd_diff(int argc, char **argv)
 {
-    enum { OPT_JSON = 4000 };
-    static const struct option longopts[] = {
-        {"output", required_argument, 0, 'o'}, {"json", no_argument, 0, OPT_JSON}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
+    enum { OPT_JSON = 4000, OPT_NO_LEGEND };
+    static const struct option longopts[] = {{"output", required_argument, 0, 'o'},
+                                             {"json", no_argument, 0, OPT_JSON},
+                                             {"no-legend", no_argument, 0, OPT_NO_LEGEND},
+                                             {"help", no_argument, 0, 'h'},
+                                             {0, 0, 0, 0}};
     const char *out = NULL;
-    int json = 0;
+    int json = 0, legend = 1;
     opterr = 0;
     optind = 1;
     int c;
@@ -60,6 +100,7 @@ int cmd_diff(int argc, char **argv)
         case 'h': help(); return CLI_EXIT_OK;
         case 'o': out = optarg; break;
         case OPT_JSON: json = 1; break;
+        case OPT_NO_LEGEND: legend = 0; break;
         default: cli_getopt_error(CMD, c, argv); return CLI_EXIT_USAGE;
         }
     }
@@ -108,13 +149,15 @@ int cmd_diff(int argc, char **argv)
         if (d > max) max = d;
         over1 += d > 1.0;
         over4 += d > 4.0;
-        if (map) ramp(d, map + 3 * i);
+        if (map) cli_de_color(d, map + 3 * i);
     }
     free(a);
     free(b);
     int rc = CLI_EXIT_OK;
     if (map) {
-        if (biref_png_write_rgb8(out, wa, ha, map, msg, sizeof msg) != BIREF_OK) {
+        if (legend) {
+            rc = write_map_with_legend(out, wa, ha, map);
+        } else if (biref_png_write_rgb8(out, wa, ha, map, msg, sizeof msg) != BIREF_OK) {
             cli_error(CMD, "%s", msg);
             rc = CLI_EXIT_FAIL;
         }

@@ -15,6 +15,8 @@
 #include "cli_common.h"
 #include "cli_data.h"
 #include "commands.h"
+#include "de_scale.h"
+#include "fig_aliasing.h"
 #include "fig_common.h"
 #include "fig_plot.h"
 #include "io/outfile.h"
@@ -30,6 +32,8 @@ static void help(void)
            "  fig7     CIEDE2000 of analytic vs ground truth as a function of angle and birefringence\n"
            "  fig9     renders of examples/fig9{a,b,c}.json with every method, with error maps\n"
            "  table1   time per 1920x1080 frame of each method on examples/fig9a.json\n"
+           "  aliasing plain, prefiltered (--antialias) and 4x4 super-sampled renders of scenes made\n"
+           "           to alias against a 32x32 super-sampled reference, with dE00 maps and costs\n"
            "  all      everything above\n\n"
            "Options:\n"
            "  -o, --out DIR        output directory (created if missing; its parent must exist)\n"
@@ -56,7 +60,6 @@ static const method_spec FIG9_METHODS[] = {
     {"numeric 128", BIREF_METHOD_NUMERIC, 128},  {"ground truth", BIREF_METHOD_GROUND_TRUTH, 0},
 };
 enum { FIG9_NMETHODS = 6, FIG9_GT = 5 };
-#define FIG9_DE_MAX 5.0
 
 static int load_scene(const fig_ctx *c, const char *scenes, const char *name, int w, int h, biref_scene *sc)
 {
@@ -92,19 +95,6 @@ static double render_rows(const fig_ctx *c, const biref_scene *sc, const method_
     biref_renderer_destroy(r);
     if (s != BIREF_OK) return cli_error(FIG_CMD, "%s: render failed: %s", ms->name, biref_status_string(s)), -1.0;
     return t;
-}
-
-/* ΔE00 -> colour: black below 0.5 (imperceptible), then blue, green, yellow, red at FIG9_DE_MAX. */
-static void de_color(double e, double rgb[3])
-{
-    static const double stop[5] = {0.0, 1.0, 2.0, 3.0, FIG9_DE_MAX};
-    static const double col[5][3] = {{0, 0, 0}, {0.1, 0.3, 1.0}, {0.1, 0.8, 0.2}, {1.0, 0.9, 0.1}, {0.9, 0.1, 0.1}};
-    if (!(e > 0)) e = 0;
-    if (e >= stop[4]) e = stop[4];
-    int i = 0;
-    while (i < 3 && e > stop[i + 1]) i++;
-    double u = (e - stop[i]) / (stop[i + 1] - stop[i]);
-    for (int k = 0; k < 3; k++) rgb[k] = col[i][k] + u * (col[i + 1][k] - col[i][k]);
 }
 
 static cairo_surface_t *surface_from_rgb(const unsigned char *rgb, int w, int h)
@@ -171,9 +161,7 @@ static int fig9_scene(const fig_ctx *c, const char *scenes, const char *name, FI
             sum += e;
             mx = fmax(mx, e);
             above1 += e > 1.0;
-            double col[3];
-            de_color(e, col);
-            for (int k = 0; k < 3; k++) map[3 * i + k] = (unsigned char)lround(255.0 * col[k]);
+            cli_de_color(e, map + 3 * i);
         }
         qsort(sorted, npx, sizeof(double), fig_cmp_double);
         double p95 = sorted[(size_t)floor(0.95 * (double)(npx - 1))];
@@ -205,24 +193,7 @@ static int fig9_scene(const fig_ctx *c, const char *scenes, const char *name, FI
         cairo_surface_destroy(img);
     }
     double by = head + 2 * (thh + gap) + 6;
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    cairo_move_to(cr, gap, by + 10);
-    cairo_show_text(cr, "ΔE00 vs ground truth (second row):");
-    double bx = gap + 250, bw = 360;
-    for (int i = 0; i < (int)bw; i++) {
-        double col[3];
-        de_color(FIG9_DE_MAX * i / (bw - 1), col);
-        cairo_set_source_rgb(cr, col[0], col[1], col[2]);
-        cairo_rectangle(cr, bx + i, by, 1, 14);
-        cairo_fill(cr);
-    }
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    for (int v = 0; v <= (int)FIG9_DE_MAX; v++) {
-        char lab[16];
-        snprintf(lab, sizeof lab, v == (int)FIG9_DE_MAX ? "≥%d" : "%d", v);
-        cairo_move_to(cr, bx + bw * v / FIG9_DE_MAX - 4, by + 30);
-        cairo_show_text(cr, lab);
-    }
+    cli_de_legend(cr, gap, by, 640, "ΔE00 vs ground truth (second row; the scale of biref diff):");
     char path[4096], file[64];
     snprintf(file, sizeof file, "fig9_%s.png", name + strlen(name) - 1);
     fig_out_path(c, file, path, sizeof path);
@@ -365,6 +336,30 @@ static int prepare_dir(const char *dir)
     return 0;
 }
 
+/* fig9 needs at least one of its scenes, table1 needs fig9a; a scene that is present must load. */
+static int check_scenes(const char *scenes, int fig9_on, int table1_on)
+{
+    struct stat st;
+    if (stat(scenes, &st) != 0 || !S_ISDIR(st.st_mode))
+        return cli_error(FIG_CMD, "--scenes: '%s' is not a directory", scenes), -1;
+    static const char *const names[3] = {"fig9a", "fig9b", "fig9c"};
+    int found = 0;
+    for (int i = 0; i < 3; i++) {
+        char path[4096], msg[256];
+        snprintf(path, sizeof path, "%s/%s.json", scenes, names[i]);
+        if (access(path, F_OK) != 0) {
+            if (i == 0 && table1_on) return cli_error(FIG_CMD, "table1: %s not found", path), -1;
+            continue;
+        }
+        biref_scene sc;
+        if (biref_scene_load(path, &sc, msg, sizeof msg) != BIREF_OK)
+            return cli_error(FIG_CMD, "%s: %s", path, msg), -1;
+        found++;
+    }
+    if (fig9_on && !found) return cli_error(FIG_CMD, "fig9: no scene found in %s (fig9a/b/c.json)", scenes), -1;
+    return 0;
+}
+
 enum { OPT_QUICK = 1000, OPT_THREADS, OPT_SCENES };
 
 int cmd_figure(int argc, char **argv)
@@ -394,19 +389,21 @@ int cmd_figure(int argc, char **argv)
         default: cli_getopt_error(FIG_CMD, ch, argv); return CLI_EXIT_USAGE;
         }
     }
-    if (optind >= argc) return cli_error(FIG_CMD, "missing figure name (fig5, fig6c, fig7, fig9, table1 or all)"), CLI_EXIT_USAGE;
+    if (optind >= argc) return cli_error(FIG_CMD, "missing figure name (fig5, fig6c, fig7, fig9, table1, aliasing or all)"), CLI_EXIT_USAGE;
     if (optind + 1 < argc) return cli_error(FIG_CMD, "unexpected argument '%s'", argv[optind + 1]), CLI_EXIT_USAGE;
     const char *name = argv[optind];
     char default_scenes[4096];
     if (!scenes) scenes = cli_data_path("examples", default_scenes, sizeof default_scenes);
-    static const char *const NAMES[] = {"fig5", "fig6c", "fig7", "fig9", "table1"};
-    enum { NFIG = 5 };
+    static const char *const NAMES[] = {"fig5", "fig6c", "fig7", "fig9", "table1", "aliasing"};
+    enum { NFIG = 6 };
     int sel[NFIG] = {0}, any = 0;
     for (int i = 0; i < NFIG; i++) any |= sel[i] = !strcmp(name, NAMES[i]) || !strcmp(name, "all");
     if (!any)
-        return cli_error(FIG_CMD, "unknown figure '%s' (expected fig5, fig6c, fig7, fig9, table1 or all)", name),
+        return cli_error(FIG_CMD, "unknown figure '%s' (expected fig5, fig6c, fig7, fig9, table1, aliasing or all)", name),
                CLI_EXIT_USAGE;
     if (!c.dir) return cli_error(FIG_CMD, "missing -o DIR"), CLI_EXIT_USAGE;
+    /* Everything the figures read is checked before the first one is computed. */
+    if ((sel[3] || sel[4]) && check_scenes(scenes, sel[3], sel[4])) return CLI_EXIT_USAGE;
     if (prepare_dir(c.dir)) return CLI_EXIT_FAIL;
     if (c.threads > 0) omp_set_num_threads(c.threads);
 
@@ -425,7 +422,8 @@ int cmd_figure(int argc, char **argv)
         case 1: rc = fig6c(&c); break;
         case 2: rc = fig7(&c); break;
         case 3: rc = fig9(&c, scenes); break;
-        default: rc = table1(&c, scenes); break;
+        case 4: rc = table1(&c, scenes); break;
+        default: rc = fig_aliasing(c.dir, scenes, c.quick, c.threads); break;
         }
         if (rc == CLI_EXIT_OK) fprintf(stderr, "biref figure: %s done in %.1f s\n", NAMES[i], biref_wall_seconds() - t0);
     }

@@ -327,7 +327,8 @@ int cmd_photoelastic(int argc, char **argv)
             break;
         case OPT_EXPOSURE:
             if (cli_parse_double(CMD, "--exposure", optarg, &exposure)) return CLI_EXIT_USAGE;
-            if (!(exposure > 0)) return cli_error(CMD, "--exposure: must be positive, got %g", exposure), CLI_EXIT_USAGE;
+            if (!(exposure > 0 && exposure <= 1e30))
+                return cli_error(CMD, "--exposure: must be positive and at most 1e30, got %g", exposure), CLI_EXIT_USAGE;
             break;
         case OPT_THREADS:
             if (cli_parse_int(CMD, "--threads", optarg, 0, 1024, &threads)) return CLI_EXIT_USAGE;
@@ -496,6 +497,13 @@ int cmd_photoelastic(int argc, char **argv)
         ms = 1e3 * (biref_wall_seconds() - t0);
         if (light == BIREF_PE_WHITE && exposure != 1.0)
             for (size_t i = 0; i < npx * 3; i++) xyz[i] = (float)(xyz[i] * exposure);
+        /* A non-finite colour is never an output (the loads are bounded where they enter). */
+        for (size_t i = 0; i < npx * 3; i++)
+            if (!isfinite(xyz[i])) {
+                cli_error(CMD, "%s: the picture came out non-finite (no image written)", KIND_NAMES[kind]);
+                rc = CLI_EXIT_FAIL;
+                goto done;
+            }
         biref_xyz_image_to_srgb8(xyz, npx, rgb);
         if ((rc = pe_ext_write_png(&ext, &ectx, rgb))) goto done;
         if (root) {

@@ -33,6 +33,10 @@ static void help(void)
            "                       the rest adds incoherently, 0-8 (default adaptive)\n"
            "  --tolerance E        expansion: adaptive orders' target relative error (default 1e-3;\n"
            "                       docs/PHYSICS.md section 5)\n"
+           "  --antialias A        prefilter (default for analytic and expansion): each pixel averages\n"
+           "                       the phase integrals over its footprint in path difference (no moire\n"
+           "                       rings); none: one point look-up per sample (docs/ANTIALIASING.md)\n"
+           "  --supersample K      K x K stratified jittered samples per pixel, 1-64 (default 1)\n"
            "  --width W            image width in pixels (overrides the scene)\n"
            "  --height H           image height in pixels (overrides the scene)\n"
            "  --threads T          OpenMP threads (default: all cores); the image does not depend on T\n"
@@ -45,7 +49,8 @@ static void help(void)
            BIREF_GROUND_TRUTH_SAMPLES);
 }
 
-enum { OPT_METHOD = 2000, OPT_SAMPLES, OPT_WIDTH, OPT_HEIGHT, OPT_THREADS, OPT_PFM, OPT_JSON, OPT_ORDER, OPT_TOLERANCE, OPT_BACKEND };
+enum { OPT_METHOD = 2000, OPT_SAMPLES, OPT_WIDTH, OPT_HEIGHT, OPT_THREADS, OPT_PFM, OPT_JSON, OPT_ORDER, OPT_TOLERANCE, OPT_BACKEND,
+       OPT_ANTIALIAS, OPT_SUPERSAMPLE };
 
 int cmd_render(int argc, char **argv)
 {
@@ -55,6 +60,8 @@ int cmd_render(int argc, char **argv)
                                              {"samples", required_argument, 0, OPT_SAMPLES},
                                              {"order", required_argument, 0, OPT_ORDER},
                                              {"tolerance", required_argument, 0, OPT_TOLERANCE},
+                                             {"antialias", required_argument, 0, OPT_ANTIALIAS},
+                                             {"supersample", required_argument, 0, OPT_SUPERSAMPLE},
                                              {"width", required_argument, 0, OPT_WIDTH},
                                              {"height", required_argument, 0, OPT_HEIGHT},
                                              {"threads", required_argument, 0, OPT_THREADS},
@@ -64,8 +71,8 @@ int cmd_render(int argc, char **argv)
                                              {"help", no_argument, 0, 'h'},
                                              {0, 0, 0, 0}};
     const char *out = NULL, *pfm = NULL;
-    long width = 0, height = 0, threads = 0, samples = 0;
-    int json = 0, quiet = 0, have_samples = 0, have_expansion_opt = 0, gl = 0, have_method = 0;
+    long width = 0, height = 0, threads = 0, samples = 0, supersample = 1;
+    int json = 0, quiet = 0, have_samples = 0, have_expansion_opt = 0, gl = 0, have_method = 0, antialias = -1;
     biref_render_options opt;
     biref_render_options_default(&opt);
     opterr = 0;
@@ -107,6 +114,18 @@ int cmd_render(int argc, char **argv)
             if (cli_parse_expansion_tolerance(CMD, optarg, &opt.expansion)) return CLI_EXIT_USAGE;
             have_expansion_opt = 1;
             break;
+        case OPT_ANTIALIAS:
+            if (!strcmp(optarg, "prefilter"))
+                antialias = BIREF_ANTIALIAS_PREFILTER;
+            else if (!strcmp(optarg, "none"))
+                antialias = BIREF_ANTIALIAS_NONE;
+            else
+                return cli_error(CMD, "--antialias: expected prefilter or none, got '%s'", optarg), CLI_EXIT_USAGE;
+            break;
+        case OPT_SUPERSAMPLE:
+            if (cli_parse_int(CMD, "--supersample", optarg, 1, BIREF_MAX_SUPERSAMPLE, &supersample))
+                return CLI_EXIT_USAGE;
+            break;
         case OPT_PFM: pfm = optarg; break;
         case OPT_JSON: json = 1; break;
         default: cli_getopt_error(CMD, c, argv); return CLI_EXIT_USAGE;
@@ -127,6 +146,14 @@ int cmd_render(int argc, char **argv)
     if (gl && ((have_method && opt.method != BIREF_METHOD_ANALYTIC) || threads))
         return cli_error(CMD, "--backend gl runs the analytic method only (no --method other than analytic, no --threads)"),
                CLI_EXIT_USAGE;
+    opt.supersample = (int)supersample;
+    /* The prefilter needs the phase table of the analytic method and the expansion (on the CPU). */
+    int table_method = !gl && (opt.method == BIREF_METHOD_ANALYTIC || opt.method == BIREF_METHOD_EXPANSION);
+    if (antialias == BIREF_ANTIALIAS_PREFILTER && !table_method)
+        return cli_error(CMD, "--antialias prefilter needs --method analytic or expansion on the CPU"), CLI_EXIT_USAGE;
+    if (gl && supersample > 1) return cli_error(CMD, "--supersample needs the CPU back-end"), CLI_EXIT_USAGE;
+    opt.antialias = antialias >= 0 ? (biref_antialias)antialias
+                                   : table_method ? BIREF_ANTIALIAS_PREFILTER : BIREF_ANTIALIAS_NONE;
 
     biref_scene scene;
     int rc = cli_load_scene(CMD, scene_path, &scene);
@@ -159,10 +186,18 @@ int cmd_render(int argc, char **argv)
         free(rgb);
         return rc;
     }
-    if (!gl) biref_render_image(r, xyz, biref_progress_bar_update, &bar, &stats);
+    biref_status rs = gl ? BIREF_OK : biref_render_image(r, xyz, biref_progress_bar_update, &bar, &stats);
     double ms = 1e3 * (biref_wall_seconds() - t0);
     biref_progress_bar_finish(&bar);
     biref_renderer_destroy(r);
+    if (rs != BIREF_OK) {
+        free(xyz);
+        free(rgb);
+        return cli_error(CMD, "%s: %s", scene_path,
+                         rs == BIREF_ERR_ILLCOND ? "some pixels came out non-finite (no image written)"
+                                                 : biref_status_string(rs)),
+               CLI_EXIT_FAIL;
+    }
 
     biref_xyz_image_to_srgb8(xyz, n, rgb);
     char msg[600];
@@ -202,6 +237,8 @@ int cmd_render(int argc, char **argv)
             cJSON_AddNumberToObject(root, "samples", samples_used);
         else
             cJSON_AddNullToObject(root, "samples");
+        cJSON_AddStringToObject(root, "antialias", opt.antialias == BIREF_ANTIALIAS_PREFILTER ? "prefilter" : "none");
+        cJSON_AddNumberToObject(root, "supersample", opt.supersample);
         cJSON_AddNumberToObject(root, "ms", round(ms * 1000) / 1000);
         cJSON_AddItemToObject(root, "mean_srgb", json_vec3(mean));
         cJSON_AddNumberToObject(root, "slab_fraction", (double)stats.slab_pixels / (double)stats.pixels);
@@ -214,6 +251,8 @@ int cmd_render(int argc, char **argv)
     FILE *info = strcmp(out, "-") == 0 ? stderr : stdout;
     fprintf(info, "wrote %s (%dx%d, %s%s", out, W, H, biref_method_name(opt.method), gl ? " on the GPU" : "");
     if (opt.method == BIREF_METHOD_NUMERIC) fprintf(info, " %d samples", samples_used);
+    if (opt.antialias == BIREF_ANTIALIAS_PREFILTER) fprintf(info, ", prefiltered");
+    if (opt.supersample > 1) fprintf(info, ", %dx%d samples/pixel", opt.supersample, opt.supersample);
     fprintf(info, ", %.0f ms)%s%s\n", ms, pfm ? " and " : "", pfm ? pfm : "");
     return CLI_EXIT_OK;
 }

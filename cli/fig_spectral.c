@@ -81,13 +81,14 @@ int fig5(const fig_ctx *c)
     if (fig_begin(path, 1200, 900, 2, 2)) return free(th), free(J), CLI_EXIT_FAIL;
     for (int m = 0; m < nm; m++) {
         const double *o = J + ((size_t)m * 3) * (size_t)n;
-        fig_plot_panel(0, 89, 0, 1.0, "θ (degrees)", "magnitude", FIG5_MATERIALS[m].label);
+        /* Headroom above the curves (they reach 1) holds the legend, clear of the data. */
+        fig_plot_panel(0, 89, 0, 1.32, "θ (degrees)", "magnitude", FIG5_MATERIALS[m].label);
         fig_plot_line(n, th, o + n, FIG_BLUE, 1.0);
         fig_plot_line(n, th, o + 2 * (size_t)n, FIG_RED, 1.0);
         fig_plot_line(n, th, o, FIG_BLACK, 1.0);
         static const char *const labels[] = {"|J|", "|J_s|", "|J_p|"};
         static const int colors[] = {FIG_BLACK, FIG_BLUE, FIG_RED};
-        fig_plot_legend(3, labels, colors, NULL, FIG_LEFT | FIG_BOTTOM);
+        fig_plot_legend(3, labels, colors, NULL, FIG_LEFT);
     }
     free(th);
     free(J);
@@ -170,22 +171,28 @@ int fig6c(const fig_ctx *c)
     char title[160];
     snprintf(title, sizeof title, "s-polarised in, p out (CIE 1931 xy)\n%s", FIG6C.label);
     /* Extra room below keeps the legend (bottom right) off the curve. */
-    fig_plot_panel(xmin - pad, xmax + 2 * pad, ymin - 5 * pad, ymax + pad, "x", "y", title);
+    fig_plot_panel(xmin - pad, xmax + 2 * pad, ymin - 6 * pad, ymax + pad, "x", "y", title);
     draw_locus();
     fig_plot_line(n, xg, yg, FIG_BLACK, 4.0);
     fig_plot_line(n, xa, ya, FIG_ORANGE, 1.5);
-    /* Angle labels along the ground-truth curve so the reader can follow theta. */
+    /* Angle labels along the ground-truth curve so the reader can follow theta; where the curve
+     * turns slowly (50-70 degrees) labels closer than a label's width to the last one are left
+     * out rather than printed over each other. */
+    double last_x = INFINITY, last_y = INFINITY;
+    const double min_dx = 0.09 * (xmax - xmin + 3 * pad), min_dy = 0.05 * (ymax - ymin + 6 * pad);
     for (int k = 0; k <= 8; k++) {
         int i = (int)lround((n - 1) * (k * 10.0) / 89.0);
         if (i >= n || !isfinite(xg[i])) continue;
+        if (fabs(xg[i] - last_x) < min_dx && fabs(yg[i] - last_y) < min_dy) continue;
         char lab[16];
         snprintf(lab, sizeof lab, "%d°", k * 10);
         fig_plot_text(xg[i], yg[i], lab);
+        last_x = xg[i], last_y = yg[i];
     }
-    static const char *const labels[] = {"ground truth (16384)", "analytic (m = 1)"};
-    static const int colors[] = {FIG_BLACK, FIG_ORANGE};
-    static const double widths[] = {4.0, 1.5};
-    fig_plot_legend(2, labels, colors, widths, FIG_BOTTOM);
+    static const char *const labels[] = {"ground truth (16384)", "analytic (m = 1)", "spectral locus, purple line"};
+    static const int colors[] = {FIG_BLACK, FIG_ORANGE, FIG_GREY};
+    static const double widths[] = {4.0, 1.5, 1.0};
+    fig_plot_legend(3, labels, colors, widths, FIG_BOTTOM);
     fig_plot_panel(0, 89, 0, fmax(1.0, demax * 1.05), "θ (degrees)", "ΔE00", "analytic vs ground truth");
     fig_plot_line(n, th, de, FIG_RED, 1.5);
     free(buf);

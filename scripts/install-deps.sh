@@ -9,6 +9,8 @@ pkgs=(build-essential cmake pkg-config libpng-dev libcjson-dev liblapacke-dev li
 pkgs+=(python3-numpy python3-cffi python3-pytest python3-pip python3-setuptools)
 # The WebGL2 viewer's test: headless Chromium driven by /usr/bin/python3, the GLSL reference compiler.
 pkgs+=(chromium glslang-tools python3)
+# Fuzzing the parsers (tests/fuzz): clang, its libFuzzer/sanitizer runtimes and OpenMP.
+pkgs+=(clang libclang-rt-14-dev libomp-14-dev)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -109,11 +109,23 @@ BIREF_API biref_status biref_scene_validate(const biref_scene *scene, char *msg,
 /* Rendering                                                                 */
 /* ------------------------------------------------------------------------ */
 
+/* Spatial anti-aliasing of the phase integrals (docs/ANTIALIASING.md). */
+typedef enum {
+    BIREF_ANTIALIAS_NONE = 0,     /* point look-ups at each sample's path differences (default) */
+    BIREF_ANTIALIAS_PREFILTER = 1 /* S(cos kD), S(sin kD) averaged over each sample's footprint in D
+                                     (analytic and expansion methods only) */
+} biref_antialias;
+
+#define BIREF_MAX_SUPERSAMPLE 64
+
 typedef struct {
     biref_method method;
     int samples; /* BIREF_METHOD_NUMERIC: spectral samples (default 64); ignored otherwise */
     int threads; /* OpenMP threads; 0 = the OpenMP default */
     biref_expansion_opts expansion; /* BIREF_METHOD_EXPANSION: order / tolerance */
+    biref_antialias antialias;      /* default BIREF_ANTIALIAS_NONE */
+    int supersample; /* K x K stratified, jittered samples per pixel, box-filtered (default 1:
+                        one ray through the pixel centre); 1 ... BIREF_MAX_SUPERSAMPLE */
 } biref_render_options;
 
 BIREF_API void biref_render_options_default(biref_render_options *opt);
@@ -141,7 +153,8 @@ typedef struct {
  * width * height * 3 floats, row-major from the top; rows not rendered are untouched).
  * XYZ is band-normalised (white E = (1,1,1)) and already multiplied by the exposure.
  * Deterministic: every pixel is independent of the thread count. No allocation per
- * pixel. stats and progress may be NULL. */
+ * pixel. stats and progress may be NULL. BIREF_ERR_ILLCOND if a pixel came out non-finite
+ * (stored as 0; never expected for a validated scene). */
 BIREF_API biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_end, int y_step, float *xyz,
                                              biref_progress_fn progress, void *progress_user, biref_render_stats *stats);
 

@@ -142,7 +142,7 @@ def test_render_matches_cli(tmp_path):
     assert img.shape == (27, 48, 3) and np.all(np.isfinite(img))
     pfm = tmp_path / "a.pfm"
     subprocess.run([CLI, "render", os.path.join(ROOT, "examples", "fig9a.json"), "-o", str(tmp_path / "a.png"),
-                    "--width", "48", "--height", "27", "--pfm", str(pfm), "-q"], check=True)
+                    "--width", "48", "--height", "27", "--pfm", str(pfm), "-q", "--antialias", "none"], check=True)
     data = pfm.read_bytes()
     header_end = 0
     for _ in range(3):

@@ -67,7 +67,6 @@ static void sp_fields(double complex q, double K, double eta, double complex Es[
 
 static void finish_mode(biref_modes *m, int idx, double K)
 {
-    curl_field(m->q[idx], K, m->E[idx], m->H[idx]);
     poynting_dir(m->E[idx], m->H[idx], m->poynting[idx]);
     double complex q = m->q[idx];
     m->eta_eff[idx] = (fabs(cimag(q)) > 0.0) ? NAN : sqrt(creal(q) * creal(q) + K * K); /* eq. 5 */
@@ -102,25 +101,33 @@ void biref_isotropic_modes(double eta, double K, biref_modes *m)
  * point o and e are degenerate and any orthogonal transverse pair is an exact basis. */
 #define DEGENERATE_REL 1e-9
 
-void biref_uniaxial_modes(double eta_o, double eta_e, const double A[3], double K, biref_modes *m)
+void biref_uniaxial_normal_components(double eta_o, double eta_e, const double A[3], double K, double complex q[4])
+{
+    double be = A[1], ga = A[2];
+    double eo = eta_o * eta_o, ee = eta_e * eta_e, de = ee - eo;
+    /* Ordinary: |k|^2 = eps_o (eq. 2). */
+    iso_normal_components(eo, K, &q[BIREF_MODE_O_DOWN], &q[BIREF_MODE_O_UP]);
+    /* Extraordinary: k^T eps k = eps_o eps_e with eps = eps_o I + de A A^T and k = (0, q, -K):
+     * (eps_o + be^2 de) q^2 - 2 be ga K de q + K^2 (eps_o + ga^2 de) - eps_o eps_e = 0.
+     * The paper's eq. 2 put be*ga*K*de inside the square root (OCR); it belongs outside.
+     * The + root carries energy upwards (d/dq of the dispersion relation is +2 sqrt(eps_o disc)). */
+    double a = eo + be * be * de;
+    double disc = ee * (eo + be * be * de) + K * K * (A[0] * A[0] * de - ee);
+    double complex root = disc >= 0.0 ? sqrt(eo * disc) + 0.0 * I : I * sqrt(-eo * disc);
+    q[BIREF_MODE_E_DOWN] = (be * ga * K * de - root) / a;
+    q[BIREF_MODE_E_UP] = (be * ga * K * de + root) / a;
+}
+
+void biref_uniaxial_mode_fields(double eta_o, double eta_e, const double A[3], double K, biref_modes *m)
 {
     memset(m, 0, sizeof *m);
     m->K = K;
     double al = A[0], be = A[1], ga = A[2];
     double eo = eta_o * eta_o, ee = eta_e * eta_e, de = ee - eo;
 
-    /* Ordinary: |k|^2 = eps_o (eq. 2). */
-    iso_normal_components(eo, K, &m->q[BIREF_MODE_O_DOWN], &m->q[BIREF_MODE_O_UP]);
+    biref_uniaxial_normal_components(eta_o, eta_e, A, K, m->q);
 
-    /* Extraordinary: k^T eps k = eps_o eps_e with eps = eps_o I + de A A^T and k = (0, q, -K):
-     * (eps_o + be^2 de) q^2 - 2 be ga K de q + K^2 (eps_o + ga^2 de) - eps_o eps_e = 0.
-     * The paper's eq. 2 put be*ga*K*de inside the square root (OCR); it belongs outside.
-     * The + root carries energy upwards (d/dq of the dispersion relation is +2 sqrt(eps_o disc)). */
-    double a = eo + be * be * de;
     double disc = ee * (eo + be * be * de) + K * K * (al * al * de - ee);
-    double complex root = disc >= 0.0 ? sqrt(eo * disc) + 0.0 * I : I * sqrt(-eo * disc);
-    m->q[BIREF_MODE_E_DOWN] = (be * ga * K * de - root) / a;
-    m->q[BIREF_MODE_E_UP] = (be * ga * K * de + root) / a;
 
     /* Maximal incidence parameters (eq. 6 corrected: the extracted text has gamma^2 where
      * the x component alpha^2 belongs; disc = 0 gives K^2 = eps_e (eps_o + be^2 de) / (eps_e - al^2 de)). */
@@ -159,6 +166,13 @@ void biref_uniaxial_modes(double eta_o, double eta_e, const double A[3], double 
             scale3(Ee, 1.0 / ne);
         }
     }
+    /* H = k x E: the interface solves need it. */
+    for (int i = 0; i < 4; i++) curl_field(m->q[i], K, m->E[i], m->H[i]);
+}
+
+void biref_uniaxial_modes(double eta_o, double eta_e, const double A[3], double K, biref_modes *m)
+{
+    biref_uniaxial_mode_fields(eta_o, eta_e, A, K, m);
     for (int i = 0; i < 4; i++) finish_mode(m, i, K);
 }
 

@@ -6,22 +6,25 @@
 #include "biref/optics.h"
 #include "optics/cmat2.h"
 #include "optics/modes_internal.h"
+#include "optics/slab_internal.h"
 #include "optics/validate.h"
 
-biref_status biref_slab_prepare(const biref_slab *slab, double theta, biref_slab_state *st)
+/* The state of a checked slab; full = 0 skips the Poynting directions and effective indices of
+ * the modes (left 0), which no spectral method reads. */
+static biref_status slab_prepare(const biref_slab *slab, double theta, int full, biref_slab_state *st)
 {
-    biref_status s = biref_slab_check(slab, NULL, 0);
-    if (s == BIREF_OK) s = biref_theta_check(theta, NULL, 0);
-    if (s != BIREF_OK) return s;
-    memset(st, 0, sizeof *st);
+    biref_status s;
     st->slab = *slab;
-    biref_axis_normalize(slab->axis, st->slab.axis); /* checked above */
+    biref_axis_unit_unchecked(slab->axis, st->slab.axis);
     st->theta = theta;
     st->K = slab->eta_i * sin(theta); /* eq. 1 */
 
     biref_modes ambient;
     biref_isotropic_modes(slab->eta_i, st->K, &ambient);
-    biref_uniaxial_modes(slab->eta_o, slab->eta_e, st->slab.axis, st->K, &st->modes);
+    if (full)
+        biref_uniaxial_modes(slab->eta_o, slab->eta_e, st->slab.axis, st->K, &st->modes);
+    else
+        biref_uniaxial_mode_fields(slab->eta_o, slab->eta_e, st->slab.axis, st->K, &st->modes);
     s = biref_interface_from_modes(&ambient, &st->modes, &st->top);
     if (s == BIREF_OK) s = biref_interface_from_modes(&st->modes, &ambient, &st->bottom);
     if (s != BIREF_OK) return s;
@@ -36,6 +39,20 @@ biref_status biref_slab_prepare(const biref_slab *slab, double theta, biref_slab
     st->opl_up[BIREF_E] = st->modes.q[BIREF_MODE_E_UP] * d;
     st->total_reflection = st->modes.evanescent_o || st->modes.evanescent_e;
     return BIREF_OK;
+}
+
+biref_status biref_slab_prepare(const biref_slab *slab, double theta, biref_slab_state *st)
+{
+    biref_status s = biref_slab_check(slab, NULL, 0);
+    if (s == BIREF_OK) s = biref_theta_check(theta, NULL, 0);
+    if (s != BIREF_OK) return s;
+    memset(st, 0, sizeof *st);
+    return slab_prepare(slab, theta, 1, st);
+}
+
+biref_status biref_slab_prepare_trusted(const biref_slab *slab, double theta, biref_slab_state *st)
+{
+    return slab_prepare(slab, theta, 0, st);
 }
 
 void biref_slab_state_flip(const biref_slab_state *in, biref_slab_state *out)

@@ -16,7 +16,9 @@ biref_status biref_check_index(const char *name, double eta, char *msg, size_t m
 /* |axis| and the axis scaled by its largest component (m = 0 for the zero vector). */
 static double axis_norm(const double axis[3], double scaled[3])
 {
-    double m = fmax(fabs(axis[0]), fmax(fabs(axis[1]), fabs(axis[2])));
+    double a0 = fabs(axis[0]), a1 = fabs(axis[1]), a2 = fabs(axis[2]);
+    double m = a0 > a1 ? a0 : a1; /* fmax without libm calls (NaN is rejected by the callers first) */
+    m = m > a2 ? m : a2;
     for (int i = 0; i < 3; i++) scaled[i] = m > 0.0 ? axis[i] / m : 0.0;
     return m * sqrt(scaled[0] * scaled[0] + scaled[1] * scaled[1] + scaled[2] * scaled[2]);
 }
@@ -30,14 +32,19 @@ biref_status biref_check_axis(const double axis[3], char *msg, size_t msg_len)
     return BIREF_OK;
 }
 
-biref_status biref_axis_normalize(const double axis[3], double unit[3])
+void biref_axis_unit_unchecked(const double axis[3], double unit[3])
 {
-    biref_status s = biref_check_axis(axis, NULL, 0);
-    if (s != BIREF_OK) return s;
     double scaled[3];
     axis_norm(axis, scaled);
     double inv = 1.0 / sqrt(scaled[0] * scaled[0] + scaled[1] * scaled[1] + scaled[2] * scaled[2]);
     for (int i = 0; i < 3; i++) unit[i] = scaled[i] * inv;
+}
+
+biref_status biref_axis_normalize(const double axis[3], double unit[3])
+{
+    biref_status s = biref_check_axis(axis, NULL, 0);
+    if (s != BIREF_OK) return s;
+    biref_axis_unit_unchecked(axis, unit);
     return BIREF_OK;
 }
 

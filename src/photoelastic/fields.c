@@ -61,6 +61,18 @@ void biref_pe_beam_stress(double H, double h, double M, double x, double y, bire
 
 static int positive(double v) { return isfinite(v) && v > 0.0; }
 
+/* The nominal stress of a load case stays within 1e12 Pa (1e6 MPa, a terapascal, the stress-grid
+ * limit too): far beyond any plate in a polariscope, and low enough that stresses, retardations
+ * and fringe orders stay finite everywhere. */
+#define PE_MAX_NOMINAL_PA 1e12
+
+static biref_status nominal_ok(double sigma, const char *what, char *msg, size_t msg_len)
+{
+    if (fabs(sigma) <= PE_MAX_NOMINAL_PA) return BIREF_OK;
+    return biref_fail(msg, msg_len, "%s gives a nominal stress of %g MPa, beyond %g MPa", what, sigma / 1e6,
+                      PE_MAX_NOMINAL_PA / 1e6);
+}
+
 static void base(biref_pe_field *f, biref_pe_field_kind kind, double h)
 {
     memset(f, 0, sizeof *f);
@@ -73,6 +85,7 @@ biref_status biref_pe_field_disk(biref_pe_field *f, double R, double h, double P
     if (!positive(R)) return biref_fail(msg, msg_len, "disk radius must be positive");
     if (!positive(h)) return biref_fail(msg, msg_len, "thickness must be positive");
     if (!isfinite(P) || P < 0.0) return biref_fail(msg, msg_len, "load must be a finite compressive force >= 0");
+    if (nominal_ok(P / (R * h), "load / (radius x thickness)", msg, msg_len)) return BIREF_ERR_INVALID;
     base(f, BIREF_PE_DISK, h);
     f->radius = R;
     f->load = P;
@@ -92,6 +105,7 @@ biref_status biref_pe_field_hole(biref_pe_field *f, double a, double width, doub
     if (!(2.0 * a < width && 2.0 * a < height)) return biref_fail(msg, msg_len, "the hole must fit inside the plate");
     if (!positive(h)) return biref_fail(msg, msg_len, "thickness must be positive");
     if (!isfinite(S)) return biref_fail(msg, msg_len, "remote stress must be finite");
+    if (nominal_ok(S, "remote stress", msg, msg_len)) return BIREF_ERR_INVALID;
     if (!isfinite(angle)) return biref_fail(msg, msg_len, "tension direction must be finite");
     base(f, BIREF_PE_HOLE, h);
     f->angle = angle;
@@ -113,6 +127,7 @@ biref_status biref_pe_field_beam(biref_pe_field *f, double length, double H, dou
     if (!positive(H)) return biref_fail(msg, msg_len, "beam depth must be positive");
     if (!positive(h)) return biref_fail(msg, msg_len, "thickness must be positive");
     if (!isfinite(M)) return biref_fail(msg, msg_len, "bending moment must be finite");
+    if (nominal_ok(6.0 * M / (h * H * H), "6 x moment / (thickness x depth^2)", msg, msg_len)) return BIREF_ERR_INVALID;
     base(f, BIREF_PE_BEAM, h);
     f->width = length;
     f->depth = H;

@@ -19,6 +19,7 @@ struct biref_pe_grid {
 enum { COL_X, COL_Y, COL_SXX, COL_SYY, COL_TXY, NCOL };
 static const char *const COL_NAMES[NCOL] = {"x_mm", "y_mm", "sxx_MPa", "syy_MPa", "txy_MPa"};
 #define HEADER_TEXT "x_mm,y_mm,sxx_MPa,syy_MPa,txy_MPa"
+#define GRID_MAX_VALUE 1e6 /* mm and MPa */
 /* Refuse absurd files before allocating for them. */
 #define MAX_ROWS 50000000L
 #define MAX_FILE_BYTES (1L << 31)
@@ -264,6 +265,11 @@ biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **o
                 st = biref_fail(msg, msg_len, "line %ld, column %s: not a number: '%s'", line, COL_NAMES[c], buf);
             else if (!isfinite(v) || errno == ERANGE)
                 st = biref_fail(msg, msg_len, "line %ld, column %s: not a finite number: '%s'", line, COL_NAMES[c], buf);
+            /* A kilometre and a terapascal are far beyond any plate in a polariscope; within
+             * them, spans, spacings and fringe orders stay finite. */
+            else if (fabs(v) > GRID_MAX_VALUE)
+                st = biref_fail(msg, msg_len, "line %ld, column %s: %s is out of range (at most %g in magnitude)", line,
+                                COL_NAMES[c], buf, GRID_MAX_VALUE);
             r->v[c] = v;
         }
         n++;

@@ -8,7 +8,15 @@ biref_status biref_stokes_to_coherency(const double S[4], double complex C[2][2]
 {
     for (int i = 0; i < 4; i++)
         if (!isfinite(S[i])) return BIREF_ERR_INVALID;
-    if (S[0] < 0.0 || S[1] * S[1] + S[2] * S[2] + S[3] * S[3] > S[0] * S[0] * (1.0 + 1e-12)) return BIREF_ERR_INVALID;
+    /* Degree of polarization <= 1, tested on S / S0 so that squares of large entries cannot
+     * overflow; S0 + |S1| must stay finite for the coherency matrix itself. */
+    if (S[0] < 0.0 || !isfinite(S[0] + fabs(S[1])) || !isfinite(fabs(S[2]) + fabs(S[3]))) return BIREF_ERR_INVALID;
+    if (S[0] == 0.0) {
+        if (S[1] != 0.0 || S[2] != 0.0 || S[3] != 0.0) return BIREF_ERR_INVALID;
+    } else {
+        const double s1 = S[1] / S[0], s2 = S[2] / S[0], s3 = S[3] / S[0];
+        if (s1 * s1 + s2 * s2 + s3 * s3 > 1.0 + 1e-12) return BIREF_ERR_INVALID;
+    }
     C[0][0] = 0.5 * (S[0] + S[1]);
     C[1][1] = 0.5 * (S[0] - S[1]);
     C[0][1] = 0.5 * (S[2] - I * S[3]);

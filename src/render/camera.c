@@ -26,6 +26,15 @@ void biref_render_camera_init(render_camera *c, const biref_camera *cam)
     c->tan_half_h = c->tan_half_v * (double)cam->width / (double)cam->height;
 }
 
+void biref_render_camera_ray_at(const render_camera *c, double fx, double fy, double dir[3])
+{
+    double sx = (2.0 * fx / c->width - 1.0) * c->tan_half_h;
+    double sy = (1.0 - 2.0 * fy / c->height) * c->tan_half_v;
+    double d[3];
+    for (int i = 0; i < 3; i++) d[i] = c->forward[i] + sx * c->right[i] + sy * c->up[i];
+    v3_normalize(d, dir);
+}
+
 void biref_render_camera_ray(const render_camera *c, int x, int y, double dir[3])
 {
     double sx = (2.0 * (x + 0.5) / c->width - 1.0) * c->tan_half_h;

@@ -1,5 +1,7 @@
 /* The renderer object and the parallel row loop. */
+#include <float.h>
 #include <math.h>
+#include <stdint.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,6 +17,8 @@ void biref_render_options_default(biref_render_options *opt)
     opt->samples = 64;
     opt->threads = 0;
     biref_expansion_opts_default(&opt->expansion);
+    opt->antialias = BIREF_ANTIALIAS_NONE;
+    opt->supersample = 1;
 }
 
 biref_status biref_renderer_create(const biref_scene *scene, const biref_render_options *opt, biref_renderer **out,
@@ -32,6 +36,15 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
         return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "samples must be between 1 and 65536");
     if (opt->threads < 0 || opt->threads > 1024)
         return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "threads must be between 0 and 1024");
+    if (opt->antialias != BIREF_ANTIALIAS_NONE && opt->antialias != BIREF_ANTIALIAS_PREFILTER)
+        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "unknown anti-aliasing mode");
+    if (opt->antialias == BIREF_ANTIALIAS_PREFILTER && opt->method != BIREF_METHOD_ANALYTIC &&
+        opt->method != BIREF_METHOD_EXPANSION)
+        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len,
+                                 "the prefilter anti-aliasing needs --method analytic or expansion (numeric methods "
+                                 "have no phase table)");
+    if (opt->supersample < 1 || opt->supersample > BIREF_MAX_SUPERSAMPLE)
+        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "supersample must be between 1 and 64");
     int world_fixed = scene->polarization.type == BIREF_POL_LINEAR || scene->filter.type == BIREF_FILTER_LINEAR;
     if (world_fixed && opt->method == BIREF_METHOD_ANALYTIC)
         return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len,
@@ -99,6 +112,7 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
         io.expansion = opt->expansion;
         s = biref_integrator_create(r->sp, &io, &r->integrator);
     }
+    if (!s && opt->antialias == BIREF_ANTIALIAS_PREFILTER) s = biref_phase_prefilter_create(r->sp, &r->prefilter);
     if (s) {
         char text[120];
         snprintf(text, sizeof text, "cannot set up the spectral integration: %s", biref_status_string(s));
@@ -113,12 +127,57 @@ void biref_renderer_destroy(biref_renderer *r)
 {
     if (!r) return;
     biref_integrator_destroy(r->integrator);
+    biref_phase_prefilter_destroy(r->prefilter);
     biref_spectral_destroy(r->sp);
     free(r);
 }
 
 int biref_renderer_width(const biref_renderer *r) { return r->cam.width; }
 int biref_renderer_height(const biref_renderer *r) { return r->cam.height; }
+
+/* A deterministic value in [0, 1) per pixel and sub-sample: the image does not depend on the
+ * thread count or the row order. */
+static double jitter(int x, int y, int s, uint32_t salt)
+{
+    uint32_t h = (uint32_t)x * 0x8da6b343u ^ (uint32_t)y * 0xd8163841u ^ (uint32_t)s * 0xcb1ab31fu ^ salt;
+    h ^= h >> 16;
+    h *= 0x7feb352du;
+    h ^= h >> 15;
+    h *= 0x846ca68bu;
+    h ^= h >> 16;
+    return (h >> 8) * (1.0 / 16777216.0);
+}
+
+/* K x K stratified jittered samples of pixel (x, y), box-filtered; with the prefilter each
+ * sample's footprint is its stratum (steps of 1/K pixel to the neighbouring samples). Returns
+ * 1 if any sample hit a slab; *fallback counts failed slab evaluations. */
+static int sample_pixel(const biref_renderer *r, int x, int y, double xyz[3], int *fallback)
+{
+    const int K = r->opt.supersample;
+    const double h = 1.0 / K;
+    int hit = 0;
+    *fallback = 0;
+    xyz[0] = xyz[1] = xyz[2] = 0.0;
+    for (int j = 0; j < K; j++)
+        for (int i = 0; i < K; i++) {
+            int s = j * K + i, fb;
+            double fx = x + (K == 1 ? 0.5 : (i + jitter(x, y, s, 0x9e3779b9u)) * h);
+            double fy = y + (K == 1 ? 0.5 : (j + jitter(x, y, s, 0x7f4a7c15u)) * h);
+            double dir[3], c[3], dx[3], dy[3], d1[3];
+            biref_render_camera_ray_at(&r->cam, fx, fy, dir);
+            if (r->prefilter) {
+                biref_render_camera_ray_at(&r->cam, fx + h, fy, d1);
+                v3_sub(d1, dir, dx);
+                biref_render_camera_ray_at(&r->cam, fx, fy + h, d1);
+                v3_sub(d1, dir, dy);
+            }
+            hit |= biref_render_shade_pixel(r, dir, r->prefilter ? dx : NULL, r->prefilter ? dy : NULL, c, &fb);
+            *fallback += fb;
+            for (int k = 0; k < 3; k++) xyz[k] += c[k];
+        }
+    for (int k = 0; k < 3; k++) xyz[k] /= (double)(K * K);
+    return hit;
+}
 
 biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_end, int y_step, float *xyz,
                                    biref_progress_fn progress, void *progress_user, biref_render_stats *stats)
@@ -127,24 +186,31 @@ biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_e
     const int W = r->cam.width;
     const int rows = (y_end - y_begin + y_step - 1) / y_step;
     const int threads = r->opt.threads > 0 ? r->opt.threads : omp_get_max_threads();
-    long slab_pixels = 0, fallbacks = 0;
+    long slab_pixels = 0, fallbacks = 0, nonfinite = 0;
     int done = 0;
     /* Rows are independent and every pixel is computed the same way on any thread, so the
      * image does not depend on the thread count; dynamic scheduling balances rows that miss
      * the slab (cheap) against rows that hit it (expensive). */
-#pragma omp parallel for schedule(dynamic) num_threads(threads) reduction(+ : slab_pixels, fallbacks)
+#pragma omp parallel for schedule(dynamic) num_threads(threads) reduction(+ : slab_pixels, fallbacks, nonfinite)
     for (int k = 0; k < rows; k++) {
         const int y = y_begin + k * y_step;
         float *row = xyz + (size_t)y * W * 3;
         for (int x = 0; x < W; x++) {
             double dir[3], c[3];
             int fb;
-            biref_render_camera_ray(&r->cam, x, y, dir);
-            slab_pixels += biref_render_shade_pixel(r, dir, c, &fb);
+            if (r->opt.supersample == 1 && !r->prefilter) {
+                biref_render_camera_ray(&r->cam, x, y, dir);
+                slab_pixels += biref_render_shade_pixel(r, dir, NULL, NULL, c, &fb);
+            } else {
+                slab_pixels += sample_pixel(r, x, y, c, &fb);
+            }
             fallbacks += fb;
             for (int i = 0; i < 3; i++) {
                 double v = c[i] * r->exposure;
-                row[3 * x + i] = (float)(isfinite(v) ? v : 0.0);
+                /* Validated scenes keep v far inside float range; anything else is reported. */
+                const int ok = isfinite(v) && fabs(v) <= FLT_MAX;
+                nonfinite += !ok;
+                row[3 * x + i] = (float)(ok ? v : 0.0);
             }
         }
         if (progress) {
@@ -160,7 +226,8 @@ biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_e
         stats->slab_pixels = slab_pixels;
         stats->fallback_evals = fallbacks;
     }
-    return BIREF_OK;
+    /* A non-finite colour is never an output: such pixels are stored as 0 and reported. */
+    return nonfinite ? BIREF_ERR_ILLCOND : BIREF_OK;
 }
 
 biref_status biref_render_image(const biref_renderer *r, float *xyz, biref_progress_fn progress, void *progress_user,

@@ -8,6 +8,7 @@
 #include "biref/integrator.h"
 #include "biref/render.h"
 #include "biref/shading.h"
+#include "spectral/phase_prefilter.h"
 
 typedef struct {
     double origin[3];
@@ -53,12 +54,15 @@ struct biref_renderer {
     biref_light light;       /* the same as a light, for rays that are not world-fixed */
     biref_spectral *sp;
     biref_integrator *integrator;
+    biref_phase_prefilter *prefilter; /* antialias prefilter: analytic and expansion */
 };
 
 /* camera.c */
 void biref_render_camera_init(render_camera *c, const biref_camera *cam);
 /* Unit direction through the centre of pixel (x, y), y = 0 at the top. */
 void biref_render_camera_ray(const render_camera *c, int x, int y, double dir[3]);
+/* Unit direction through the image point (fx, fy) in pixels (pixel (x, y) spans [x, x + 1) x [y, y + 1)). */
+void biref_render_camera_ray_at(const render_camera *c, double fx, double fy, double dir[3]);
 
 /* shade.c */
 void biref_render_env_init(render_env *e, const biref_environment *env);
@@ -67,8 +71,10 @@ void biref_render_env_init(render_env *e, const biref_environment *env);
 void biref_render_radiance(const biref_renderer *r, const double from[3], const double dir[3], double xyz[3]);
 /* The whole pixel: nearest slab hit, transmission and reflection, or the filtered
  * background. Returns 1 if a slab was hit, and sets *fallback when a slab evaluation
- * failed and the fallback was used. */
-int biref_render_shade_pixel(const biref_renderer *r, const double dir[3], double xyz[3], int *fallback);
+ * failed and the fallback was used. dx, dy: the steps from dir to the neighbouring samples'
+ * directions, for the prefilter's footprint (NULL: point phase integrals). */
+int biref_render_shade_pixel(const biref_renderer *r, const double dir[3], const double dx[3], const double dy[3],
+                             double xyz[3], int *fallback);
 /* The slab's two evaluations at one hit (transmission from behind, reflection from the mirror
  * direction) in the hit's frames; non-zero when either fails (outputs then undefined). */
 int biref_render_shade_hit(const biref_renderer *r, const biref_hit_frames *f, double T_xyz[3], double R_xyz[3]);
@@ -77,5 +83,10 @@ int biref_render_shade_hit(const biref_renderer *r, const biref_hit_frames *f, d
  * unit tangent and unit world optic axis; base gives the slab's constants. */
 void biref_render_hit_frames(const double normal[3], const double tangent[3], const double axis_world[3],
                        const biref_slab *base, const double dir[3], biref_hit_frames *f);
+
+/* footprint.c: the change of each leg type's optical path between the ray dir and the rays
+ * dir + dx, dir + dy (the neighbouring samples) on the slab sl, in its transmission frame. */
+void biref_render_footprint(const biref_renderer *r, const render_slab *sl, const double dir[3], const double dx[3],
+                            const double dy[3], biref_opl_footprint *fp);
 
 #endif

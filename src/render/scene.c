@@ -612,10 +612,18 @@ static int unit_vec(const double v[3])
     return finite_vec(v, 3) && fabs(v3_len(v) - 1.0) < 1e-6;
 }
 
+/* Pixels are single-precision floats (at most 3.4e38): a light, the exposure and their product
+ * stay far below that, so that no pixel can overflow to infinity or NaN. */
+#define MAX_BRIGHTNESS 1e30
+
 static int colour_ok(const double v[3])
 {
-    return finite_vec(v, 3) && v[0] >= 0 && v[1] >= 0 && v[2] >= 0;
+    for (int i = 0; i < 3; i++)
+        if (!(isfinite(v[i]) && v[i] >= 0 && v[i] <= MAX_BRIGHTNESS)) return 0;
+    return 1;
 }
+
+static double colour_max(const double v[3]) { return fmax(v[0], fmax(v[1], v[2])); }
 
 biref_status biref_scene_validate(const biref_scene *sc, char *msg, size_t msg_len)
 {
@@ -688,19 +696,25 @@ biref_status biref_scene_validate(const biref_scene *sc, char *msg, size_t msg_l
         if (!unit_vec(pn->normal)) return PANEL_FAIL("normal", "must be a unit vector");
         if (!unit_vec(pn->tangent) || fabs(v3_dot(pn->tangent, pn->normal)) > 1e-6)
             return PANEL_FAIL("tangent", "must be a unit vector orthogonal to the normal");
-        if (!colour_ok(pn->radiance)) return PANEL_FAIL("radiance", "must be finite and non-negative");
+        if (!colour_ok(pn->radiance)) return PANEL_FAIL("radiance", "must be finite, non-negative and at most 1e30");
 #undef PANEL_FAIL
     }
     const biref_environment *env = &sc->env;
     if (env->type != BIREF_ENV_GRADIENT && env->type != BIREF_ENV_CHECKER)
         return FAIL(c, "light.environment.type", "unknown type");
     if (!unit_vec(env->up)) return FAIL(c, "light.environment.up", "must be a unit vector");
-    if (!colour_ok(env->zenith)) return FAIL(c, "light.environment.zenith", "must be finite and non-negative");
-    if (!colour_ok(env->horizon)) return FAIL(c, "light.environment.horizon", "must be finite and non-negative");
-    if (!colour_ok(env->ground)) return FAIL(c, "light.environment.ground", "must be finite and non-negative");
-    if (!colour_ok(env->check_a)) return FAIL(c, "light.environment.a", "must be finite and non-negative");
-    if (!colour_ok(env->check_b)) return FAIL(c, "light.environment.b", "must be finite and non-negative");
+    if (!colour_ok(env->zenith)) return FAIL(c, "light.environment.zenith", "must be finite, non-negative and at most 1e30");
+    if (!colour_ok(env->horizon)) return FAIL(c, "light.environment.horizon", "must be finite, non-negative and at most 1e30");
+    if (!colour_ok(env->ground)) return FAIL(c, "light.environment.ground", "must be finite, non-negative and at most 1e30");
+    if (!colour_ok(env->check_a)) return FAIL(c, "light.environment.a", "must be finite, non-negative and at most 1e30");
+    if (!colour_ok(env->check_b)) return FAIL(c, "light.environment.b", "must be finite, non-negative and at most 1e30");
     if (!(isfinite(env->check_size) && env->check_size > 0)) return FAIL(c, "light.environment.size", "must be positive");
+    double brightest = fmax(fmax(colour_max(env->zenith), colour_max(env->horizon)),
+                            fmax(colour_max(env->ground), fmax(colour_max(env->check_a), colour_max(env->check_b))));
+    for (int i = 0; i < sc->n_panels; i++) brightest = fmax(brightest, colour_max(sc->panels[i].radiance));
+    if (sc->camera.exposure > MAX_BRIGHTNESS || sc->camera.exposure * brightest > MAX_BRIGHTNESS)
+        return FAIL(c, "camera.exposure", "%g times the brightest light (%g) must be at most 1e30", sc->camera.exposure,
+                    brightest);
 
     const biref_polarization *pol = &sc->polarization;
     switch (pol->type) {

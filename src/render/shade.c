@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "optics/slab_internal.h"
 #include "render/render_internal.h"
 #include "render/vec3.h"
 
@@ -128,8 +129,8 @@ static double passthrough(const double C[2][2], const double P[2][2])
  * axis in world coordinates, the s direction of every wave), for light arriving along k_in and
  * leaving along k_out. which selects transmission or reflection. Returns 0 on success;
  * non-zero leaves xyz undefined. */
-static int eval_slab(const biref_renderer *r, const biref_slab_state *st, const double x[3], const double k_in[3],
-                     const double k_out[3], int which, double xyz[3])
+static int eval_slab(const biref_renderer *r, const biref_slab_state *st, const biref_opl_footprint *fp,
+                     const double x[3], const double k_in[3], const double k_out[3], int which, double xyz[3])
 {
     const biref_light *l = &r->light;
     biref_light ray_light;
@@ -154,7 +155,7 @@ static int eval_slab(const biref_renderer *r, const biref_slab_state *st, const 
     }
     const biref_sides side = which == BIREF_REFLECTION ? BIREF_SIDE_REFLECTION : BIREF_SIDE_TRANSMISSION;
     biref_integration res;
-    if (biref_integrate(r->integrator, st, side, l, &res) != BIREF_OK) return 1;
+    if (biref_integrate_footprint(r->integrator, st, fp, side, l, &res) != BIREF_OK) return 1;
     memcpy(xyz, which == BIREF_REFLECTION ? res.R : res.T, 3 * sizeof(double));
     return 0;
 }
@@ -177,20 +178,34 @@ static double background_factor(const biref_renderer *r, const double k[3], cons
     return passthrough(C, P);
 }
 
-int biref_render_shade_hit(const biref_renderer *r, const biref_hit_frames *f, double T_xyz[3], double R_xyz[3])
+/* The slab's two evaluations, the phase integrals averaged over the footprint fpT (in the
+ * transmission frame; NULL: point look-ups). */
+static int shade_hit(const biref_renderer *r, const biref_hit_frames *f, const biref_opl_footprint *fpT,
+                     double T_xyz[3], double R_xyz[3])
 {
     /* One optics set-up per hit: the reflection frame is the transmission frame rotated by 180
      * degrees about z, i.e. the same slab lit from the other face (biref_slab_state_flip). */
     double k_refl_in[3];
     v3_scale(f->mirror, -1.0, k_refl_in);
     biref_slab_state stT, stR;
-    if (biref_slab_prepare(&f->slab, f->theta, &stT) != BIREF_OK) return 1;
+    /* The slab's constants were checked when the renderer (or biref_shade_hit) accepted them;
+     * the axis is a unit world axis seen in an orthonormal frame and theta is clamped below
+     * pi/2 (render_hit_frames), so the per-pixel set-up needs no checks. */
+    if (biref_slab_prepare_trusted(&f->slab, f->theta, &stT) != BIREF_OK) return 1;
     biref_slab_state_flip(&stT, &stR);
-    return eval_slab(r, &stT, f->x_T, f->k_view, f->k_view, BIREF_TRANSMISSION, T_xyz) ||
-           eval_slab(r, &stR, f->x_R, k_refl_in, f->k_view, BIREF_REFLECTION, R_xyz);
+    biref_opl_footprint fpR;
+    if (fpT) biref_opl_footprint_flip(fpT, &fpR); /* the flip swaps the down and up legs */
+    return eval_slab(r, &stT, fpT, f->x_T, f->k_view, f->k_view, BIREF_TRANSMISSION, T_xyz) ||
+           eval_slab(r, &stR, fpT ? &fpR : NULL, f->x_R, k_refl_in, f->k_view, BIREF_REFLECTION, R_xyz);
 }
 
-int biref_render_shade_pixel(const biref_renderer *r, const double dir[3], double xyz[3], int *fallback)
+int biref_render_shade_hit(const biref_renderer *r, const biref_hit_frames *f, double T_xyz[3], double R_xyz[3])
+{
+    return shade_hit(r, f, NULL, T_xyz, R_xyz);
+}
+
+int biref_render_shade_pixel(const biref_renderer *r, const double dir[3], const double dx[3], const double dy[3],
+                             double xyz[3], int *fallback)
 {
     *fallback = 0;
     const double *o = r->cam.origin;
@@ -230,7 +245,9 @@ int biref_render_shade_pixel(const biref_renderer *r, const double dir[3], doubl
     double k_refl_in[3];
     v3_scale(mirror, -1.0, k_refl_in);
     double tT[3], tR[3];
-    if (biref_render_shade_hit(r, &fr, tT, tR)) {
+    biref_opl_footprint fp;
+    if (r->prefilter && dx && dy) biref_render_footprint(r, hit, dir, dx, dy, &fp);
+    if (shade_hit(r, &fr, r->prefilter && dx && dy ? &fp : NULL, tT, tR)) {
         /* A failed evaluation (grazing-angle breakdown) must not put a NaN in the image:
          * treat the slab as a perfect mirror seen through the filter. */
         *fallback = 1;

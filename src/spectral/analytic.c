@@ -16,6 +16,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "spectral/phase_prefilter.h"
 #include "spectral/spectral_internal.h"
 
 typedef struct {
@@ -23,9 +24,12 @@ typedef struct {
     double att[3];     /* e^{-k_j Im D}: decay of evanescent legs at the band's centroid */
 } phase_int;
 
-static void phase_eval(const biref_spectral *sp, double complex opd, phase_int *p)
+/* opd = sum_l n[l] opl_l (legs in biref_opl_footprint order), averaged over the pixel's footprint
+ * fp (NULL: point values). */
+static void phase_eval(const biref_spectral *sp, const biref_opl_footprint *fp, double complex opd, const int n[4],
+                       phase_int *p)
 {
-    biref_spectral_phase_integrals(sp, creal(opd), p->c, p->s);
+    biref_phase_integrals_footprint(sp, fp, creal(opd), n, p->c, p->s);
     double im = cimag(opd);
     for (int j = 0; j < 3; j++) p->att[j] = im != 0.0 ? exp(-sp->k_centroid[j] * im) : 1.0;
 }
@@ -79,7 +83,8 @@ static void path_energies(const double w0[2][2][3], const double complex (*Rin)[
     }
 }
 
-static void transmission(const biref_spectral *sp, const biref_slab_state *st, double E[2][2][3], double H[2][2][3])
+static void transmission(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                         double E[2][2][3], double H[2][2][3])
 {
     const double complex(*t01)[2] = st->top.t_down, (*r10)[2] = st->top.r_up;
     const double complex(*r12)[2] = st->bottom.r_down, (*t12)[2] = st->bottom.t_down;
@@ -88,9 +93,13 @@ static void transmission(const biref_spectral *sp, const biref_slab_state *st, d
     /* Distinct optical path differences: the order-0 pair (eq. 24) and the four round trips
      * (bottom reflection into y, up, top reflection into x', down): five table look-ups. */
     phase_int h0, trip[2][2];
-    phase_eval(sp, od[1] - conj(od[0]), &h0);
+    phase_eval(sp, fp, od[1] - conj(od[0]), (const int[4]){-1, 1, 0, 0}, &h0);
     for (int y = 0; y < 2; y++)
-        for (int x2 = 0; x2 < 2; x2++) phase_eval(sp, ou[y] + od[x2], &trip[y][x2]);
+        for (int x2 = 0; x2 < 2; x2++) {
+            int n[4] = {0, 0, 0, 0};
+            n[BIREF_LEG_DOWN_O + x2]++, n[BIREF_LEG_UP_O + y]++;
+            phase_eval(sp, fp, ou[y] + od[x2], n, &trip[y][x2]);
+        }
 
     double ed[2][3], eu[2][3], w0[2][2][3], W[2][2][3];
     for (int m = 0; m < 2; m++) leg_energy(sp, od[m], ed[m]), leg_energy(sp, ou[m], eu[m]);
@@ -119,7 +128,8 @@ static void transmission(const biref_spectral *sp, const biref_slab_state *st, d
     }
 }
 
-static void reflection(const biref_spectral *sp, const biref_slab_state *st, double E[2][2][3], double H[2][2][3])
+static void reflection(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                       double E[2][2][3], double H[2][2][3])
 {
     const double complex(*r01)[2] = st->top.r_down, (*t01)[2] = st->top.t_down;
     const double complex(*r10)[2] = st->top.r_up, (*t10)[2] = st->top.t_up;
@@ -130,9 +140,11 @@ static void reflection(const biref_spectral *sp, const biref_slab_state *st, dou
      * differences; the same four sums serve as the extra round trip of the descendants. */
     double complex opl1[4];
     phase_int p1[4], pair[4][4];
+    int legs1[4][4] = {{0}}; /* leg counts of the order-1 paths */
     for (int a = 0; a < 4; a++) {
         opl1[a] = od[a >> 1] + ou[a & 1];
-        phase_eval(sp, opl1[a], &p1[a]);
+        legs1[a][BIREF_LEG_DOWN_O + (a >> 1)]++, legs1[a][BIREF_LEG_UP_O + (a & 1)]++;
+        phase_eval(sp, fp, opl1[a], legs1[a], &p1[a]);
     }
     /* Pairs (0,1) and (2,3) differ by the same up-leg difference, (0,2) and (1,3) by the same
      * down-leg difference: their table values coincide, only the decay of evanescent legs can
@@ -146,7 +158,9 @@ static void reflection(const biref_spectral *sp, const biref_slab_state *st, dou
                 for (int j = 0; j < 3; j++)
                     pair[a][b].att[j] = cimag(d) != 0.0 ? exp(-sp->k_centroid[j] * cimag(d)) : 1.0;
             } else {
-                phase_eval(sp, d, &pair[a][b]);
+                int n[4];
+                for (int l = 0; l < 4; l++) n[l] = legs1[b][l] - legs1[a][l];
+                phase_eval(sp, fp, d, n, &pair[a][b]);
             }
         }
 
@@ -227,11 +241,20 @@ void biref_physical_limit(const double E[2][2][2][3], double X[2][2][2][3])
 }
 
 /* E + 2H of the paper's terms with step 1 applied. */
-static void paper_result(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
-                         double X[2][2][3])
+static void paper_terms(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                        int which, double E[2][2][3], double H[2][2][3])
+{
+    if (which == BIREF_REFLECTION)
+        reflection(sp, st, fp, E, H);
+    else
+        transmission(sp, st, fp, E, H);
+}
+
+static void paper_result(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                         int which, double E[2][2][3], double X[2][2][3])
 {
     double H[2][2][3];
-    biref_analytic_paper_terms(sp, st, which, E, H);
+    paper_terms(sp, st, fp, which, E, H);
     for (int i = 0; i < 2; i++)
         for (int o = 0; o < 2; o++)
             for (int j = 0; j < 3; j++) X[i][o][j] = E[i][o][j] + 2.0 * H[i][o][j];
@@ -241,14 +264,17 @@ static void paper_result(const biref_spectral *sp, const biref_slab_state *st, i
 void biref_analytic_paper_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
                                 double H[2][2][3])
 {
-    if (which == BIREF_REFLECTION)
-        reflection(sp, st, E, H);
-    else
-        transmission(sp, st, E, H);
+    paper_terms(sp, st, NULL, which, E, H);
 }
 
 void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
                           double H[2][2][3])
+{
+    biref_analytic_terms_footprint(sp, st, NULL, which, E, H);
+}
+
+void biref_analytic_terms_footprint(const biref_spectral *sp, const biref_slab_state *st,
+                                    const biref_opl_footprint *fp, int which, double E[2][2][3], double H[2][2][3])
 {
     const biref_numeric_plan *coherent = biref_coherent_plan(sp, st);
     if (coherent) {
@@ -264,7 +290,7 @@ void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, 
      * internal reflections are strong: the result is kept physical (biref_physical_limit), which
      * needs both directions. H is adjusted so that E + 2H stays the result. */
     double Ed[2][2][2][3], X[2][2][2][3];
-    for (int d = 0; d < 2; d++) paper_result(sp, st, d, Ed[d], X[d]);
+    for (int d = 0; d < 2; d++) paper_result(sp, st, fp, d, Ed[d], X[d]);
     normalize_energy(X);
     memcpy(E, Ed[which], sizeof Ed[which]);
     for (int i = 0; i < 2; i++)
@@ -280,7 +306,7 @@ void biref_spectrum_analytic(const biref_spectral *sp, const biref_slab_state *s
         return;
     }
     double E[2][2][2][3], X[2][2][2][3];
-    for (int d = 0; d < 2; d++) paper_result(sp, st, d, E[d], X[d]); /* eqs. 25-26 */
+    for (int d = 0; d < 2; d++) paper_result(sp, st, NULL, d, E[d], X[d]); /* eqs. 25-26 */
     normalize_energy(X);
     memcpy(out->T, X[BIREF_TRANSMISSION], sizeof out->T);
     memcpy(out->R, X[BIREF_REFLECTION], sizeof out->R);

@@ -14,6 +14,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "spectral/phase_prefilter.h"
 #include "spectral/spectral_internal.h"
 
 #define EXP_MAX_ORDER BIREF_EXPANSION_MAX_ORDER
@@ -37,6 +38,7 @@ enum { CACHE_SLOTS = 1024, CACHE_MAX_FILL = 768 };
 
 typedef struct {
     const biref_spectral *sp;
+    const biref_opl_footprint *fp; /* NULL: point values */
     double A, B, C; /* real parts, nm */
     /* Lags between different orders (dm != 0): a small open-addressing hash, initialised on
      * first use (thick slabs never need it: see block_pair_vanishes). */
@@ -50,9 +52,11 @@ typedef struct {
     double near_c[3][3][3], near_s[3][3][3];
 } phase_cache;
 
-static void cache_init(phase_cache *pc, const biref_spectral *sp, const biref_slab_state *st)
+static void cache_init(phase_cache *pc, const biref_spectral *sp, const biref_slab_state *st,
+                       const biref_opl_footprint *fp)
 {
     pc->sp = sp;
+    pc->fp = fp;
     pc->A = creal(st->opl_down[0] + st->opl_up[0]);
     pc->B = creal(st->opl_down[1] - st->opl_down[0]);
     pc->C = creal(st->opl_up[1] - st->opl_up[0]);
@@ -65,15 +69,23 @@ static inline double lag_opd(const phase_cache *pc, int dm, int dde, int due)
     return dm * pc->A + dde * pc->B + due * pc->C;
 }
 
+/* S(cos), S(sin) of the lag (dm, dde, due), averaged over the pixel's footprint if there is one:
+ * its legs are dm (o down + o up) + dde (e down - o down) + due (e up - o up). */
+static void lag_integrals(const phase_cache *pc, int dm, int dde, int due, double c[3], double s[3])
+{
+    const int n[4] = {dm - dde, dde, dm - due, due};
+    biref_phase_integrals_footprint(pc->sp, pc->fp, lag_opd(pc, dm, dde, due), n, c, s);
+}
+
 /* S(cos), S(sin) of the same-order lag (dde, due). */
 static void lag0_integrals(phase_cache *pc, int dde, int due, double c[3], double s[3])
 {
     if (dde < -1 || dde > 1 || due < -1 || due > 1) {
-        biref_spectral_phase_integrals(pc->sp, lag_opd(pc, 0, dde, due), c, s);
+        lag_integrals(pc, 0, dde, due, c, s);
         return;
     }
     if (!pc->near_have[dde + 1][due + 1]) {
-        biref_spectral_phase_integrals(pc->sp, lag_opd(pc, 0, dde, due), pc->near_c[dde + 1][due + 1],
+        lag_integrals(pc, 0, dde, due, pc->near_c[dde + 1][due + 1],
                                        pc->near_s[dde + 1][due + 1]);
         pc->near_have[dde + 1][due + 1] = 1;
     }
@@ -98,7 +110,7 @@ static int cache_slot(phase_cache *pc, int dm, int dde, int due)
             if (pc->fill >= CACHE_MAX_FILL) return -1;
             pc->key[h] = key;
             pc->fill++;
-            biref_spectral_phase_integrals(pc->sp, lag_opd(pc, dm, dde, due), pc->c[h], pc->s[h]);
+            lag_integrals(pc, dm, dde, due, pc->c[h], pc->s[h]);
             return (int)h;
         }
         h = (h + 1) & (CACHE_SLOTS - 1u);
@@ -182,7 +194,7 @@ static void pair_sums(phase_cache *pc, const path_group *g, int G, int Gp, const
         for (int a = 0; a < Gp; a++)
             for (int b = a + 1; b < Gp; b++) {
                 double cc[3], ss[3], att[3];
-                biref_spectral_phase_integrals(pc->sp, lag_opd(pc, g[a].m - g[b].m, g[a].de - g[b].de, g[a].ue - g[b].ue),
+                lag_integrals(pc, g[a].m - g[b].m, g[a].de - g[b].de, g[a].ue - g[b].ue,
                                                cc, ss);
                 double im = cimag(g[a].opl) + cimag(g[b].opl);
                 for (int j = 0; j < 3; j++) att[j] = im != 0.0 ? exp(-kc[j] * im) : 1.0;
@@ -237,7 +249,7 @@ static void pair_sums(phase_cache *pc, const path_group *g, int G, int Gp, const
                     if (h < 0) {
                         double cc[3], ss[3];
                         double complex z[MAX_COMP];
-                        biref_spectral_phase_integrals(pc->sp, lag_opd(pc, dm, dde, due), cc, ss);
+                        lag_integrals(pc, dm, dde, due, cc, ss);
                         for (int c = 0; c < MAX_COMP; c++) z[c] = v[a][c] * conj(v[b][c]);
                         add_pair_integral(out, z, cc, ss);
                         continue;
@@ -498,7 +510,7 @@ static double band_coherence(phase_cache *pc, int dm, int dde, int due)
     if (dm == 0)
         lag0_integrals(pc, dde, due, c, s);
     else
-        biref_spectral_phase_integrals(pc->sp, lag_opd(pc, dm, dde, due), c, s);
+        lag_integrals(pc, dm, dde, due, c, s);
     for (int j = 0; j < 3; j++) m = dmax2(m, c[j] * c[j] + s[j] * s[j]);
     return sqrt(m);
 }
@@ -653,13 +665,13 @@ static void pure_pair_intensities(phase_cache *pc, const biref_slab_state *st, c
 }
 
 /* The detected intensity of one general form (any coherency matrix and analyzer). */
-static int expansion_core(const biref_spectral *sp, const biref_slab_state *st, int which, const quad_form *form,
-                          const biref_expansion_opts *opts, double out[3])
+static int expansion_core(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp, int which,
+                          const quad_form *form, const biref_expansion_opts *opts, double out[3])
 {
     tail_model tm;
     tail_setup(sp, st, which, form, 1, &tm);
     phase_cache pc;
-    cache_init(&pc, sp, st);
+    cache_init(&pc, sp, st, fp);
     expansion_orders ord = choose_orders(&pc, st, &tm, 1, opts);
     path_group g[EXP_MAX_GROUPS];
     int G;
@@ -688,9 +700,10 @@ void biref_expansion_tail(const biref_spectral *sp, const biref_slab_state *st, 
     tail_energy(&tm, 0, order, out);
 }
 
-biref_status biref_expansion_series_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
-                                              const double complex C[2][2], const double complex P[2][2],
-                                              const biref_expansion_opts *opts, double xyz[3], int *order_used)
+/* The series functions with the phase integrals averaged over the footprint fp (NULL: points). */
+static biref_status series_polarized(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                                     int which, const double complex C[2][2], const double complex P[2][2],
+                                     const biref_expansion_opts *opts, double xyz[3], int *order_used)
 {
     if (!sp || !st || !C || !xyz || (which != BIREF_TRANSMISSION && which != BIREF_REFLECTION)) return BIREF_ERR_INVALID;
     biref_expansion_opts def;
@@ -700,13 +713,20 @@ biref_status biref_expansion_series_polarized(const biref_spectral *sp, const bi
     }
     if (!(opts->tolerance > 0.0) && opts->order < 0) return BIREF_ERR_INVALID;
     quad_form f = {C, P};
-    int order = expansion_core(sp, st, which, &f, opts, xyz);
+    int order = expansion_core(sp, st, fp, which, &f, opts, xyz);
     if (order_used) *order_used = order;
     return BIREF_OK;
 }
 
-biref_status biref_expansion_series(const biref_spectral *sp, const biref_slab_state *st,
-                                    const biref_expansion_opts *opts, biref_spectrum *out)
+biref_status biref_expansion_series_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
+                                              const double complex C[2][2], const double complex P[2][2],
+                                              const biref_expansion_opts *opts, double xyz[3], int *order_used)
+{
+    return series_polarized(sp, st, NULL, which, C, P, opts, xyz, order_used);
+}
+
+static biref_status series(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                           const biref_expansion_opts *opts, biref_spectrum *out)
 {
     if (!sp || !st || !out) return BIREF_ERR_INVALID;
     biref_expansion_opts def;
@@ -724,7 +744,7 @@ biref_status biref_expansion_series(const biref_spectral *sp, const biref_slab_s
     /* Transmission and reflection share the path differences, hence the band integrals, and
      * the amplitude recursion. */
     phase_cache pc;
-    cache_init(&pc, sp, st);
+    cache_init(&pc, sp, st, fp);
     tail_model tm[2];
     expansion_orders ord[2];
     for (int which = 0; which < 2; which++) {
@@ -744,7 +764,13 @@ biref_status biref_expansion_series(const biref_spectral *sp, const biref_slab_s
     return BIREF_OK;
 }
 
-static biref_status expansion_pairs(const biref_spectral *sp, const biref_slab_state *st,
+biref_status biref_expansion_series(const biref_spectral *sp, const biref_slab_state *st,
+                                    const biref_expansion_opts *opts, biref_spectrum *out)
+{
+    return series(sp, st, NULL, opts, out);
+}
+
+static biref_status expansion_pairs(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
                                     const biref_expansion_opts *opts, biref_spectrum *out);
 
 static int is_diagonal(const double complex M[2][2]) { return M[0][1] == 0.0 && M[1][0] == 0.0; }
@@ -757,9 +783,10 @@ static int is_diagonal(const double complex M[2][2]) { return M[0][1] == 0.0 && 
  * diagonal) the result is that of biref_spectrum_expansion, kept physical with both directions
  * (biref_physical_limit); for other polarizers it is kept >= 0 by moving it towards the
  * incoherent energy of the paths. */
-static biref_status expansion_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
-                                       const double complex C[2][2], const double complex P[2][2],
-                                       const biref_expansion_opts *opts, double xyz[3], int *order_used)
+static biref_status expansion_polarized(const biref_spectral *sp, const biref_slab_state *st,
+                                       const biref_opl_footprint *fp, int which, const double complex C[2][2],
+                                       const double complex P[2][2], const biref_expansion_opts *opts, double xyz[3],
+                                       int *order_used)
 {
     if (!sp || !st || !C || !xyz || (which != BIREF_TRANSMISSION && which != BIREF_REFLECTION)) return BIREF_ERR_INVALID;
     const biref_numeric_plan *coherent = biref_coherent_plan(sp, st);
@@ -771,9 +798,9 @@ static biref_status expansion_polarized(const biref_spectral *sp, const biref_sl
     }
     if (is_diagonal(C) && (!P || is_diagonal(P))) {
         biref_spectrum x;
-        biref_status s = expansion_pairs(sp, st, opts, &x);
+        biref_status s = expansion_pairs(sp, st, fp, opts, &x);
         if (s != BIREF_OK) return s;
-        if (order_used) s = biref_expansion_series_polarized(sp, st, which, C, P, opts, xyz, order_used);
+        if (order_used) s = series_polarized(sp, st, fp, which, C, P, opts, xyz, order_used);
         if (s != BIREF_OK) return s;
         const double(*X)[2][3] = which == BIREF_REFLECTION ? x.R : x.T;
         for (int j = 0; j < 3; j++) {
@@ -783,7 +810,7 @@ static biref_status expansion_polarized(const biref_spectral *sp, const biref_sl
         }
         return BIREF_OK;
     }
-    biref_status s = biref_expansion_series_polarized(sp, st, which, C, P, opts, xyz, order_used);
+    biref_status s = series_polarized(sp, st, fp, which, C, P, opts, xyz, order_used);
     if (s != BIREF_OK) return s;
     if (xyz[0] < 0.0 || xyz[1] < 0.0 || xyz[2] < 0.0) {
         quad_form f = {C, P};
@@ -811,13 +838,13 @@ static biref_status expansion_polarized(const biref_spectral *sp, const biref_sl
     return BIREF_OK;
 }
 
-static biref_status expansion_pairs(const biref_spectral *sp, const biref_slab_state *st,
+static biref_status expansion_pairs(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
                                     const biref_expansion_opts *opts, biref_spectrum *out)
 {
     if (!sp || !st || !out) return BIREF_ERR_INVALID;
     const biref_numeric_plan *coherent = biref_coherent_plan(sp, st);
     if (!coherent) {
-        biref_status s = biref_expansion_series(sp, st, opts, out);
+        biref_status s = series(sp, st, fp, opts, out);
         if (s != BIREF_OK) return s;
         /* The truncated series and its incoherent tail can leave [0, 1] by up to ~1e-2 where
          * internal reflections are strong (grazing incidence, high indices). */
@@ -842,14 +869,22 @@ biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const 
                                                 const double complex C[2][2], const double complex P[2][2],
                                                 const biref_expansion_opts *opts, double xyz[3], int *order_used)
 {
-    biref_status s = expansion_polarized(sp, st, which, C, P, opts, xyz, order_used);
+    return biref_expansion_polarized_footprint(sp, st, NULL, which, C, P, opts, xyz, order_used);
+}
+
+biref_status biref_expansion_polarized_footprint(const biref_spectral *sp, const biref_slab_state *st,
+                                                 const biref_opl_footprint *fp, int which, const double complex C[2][2],
+                                                 const double complex P[2][2], const biref_expansion_opts *opts,
+                                                 double xyz[3], int *order_used)
+{
+    biref_status s = expansion_polarized(sp, st, fp, which, C, P, opts, xyz, order_used);
     return s == BIREF_OK && !finite3(xyz) ? BIREF_ERR_ILLCOND : s;
 }
 
 biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab_state *st,
                                       const biref_expansion_opts *opts, biref_spectrum *out)
 {
-    biref_status s = expansion_pairs(sp, st, opts, out);
+    biref_status s = expansion_pairs(sp, st, NULL, opts, out);
     if (s != BIREF_OK) return s;
     for (int i = 0; i < 2; i++)
         for (int o = 0; o < 2; o++)

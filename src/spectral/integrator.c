@@ -5,11 +5,12 @@
 #include <stdlib.h>
 
 #include "biref/integrator.h"
+#include "spectral/phase_prefilter.h"
 #include "spectral/spectral_internal.h"
 
 /* One side (BIREF_TRANSMISSION or BIREF_REFLECTION) of one state under one light. */
-typedef biref_status (*side_worker)(const biref_integrator *it, const biref_slab_state *st, int which,
-                                    const biref_light *l, double xyz[3], int *order_used);
+typedef biref_status (*side_worker)(const biref_integrator *it, const biref_slab_state *st, const biref_opl_footprint *fp,
+                                    int which, const biref_light *l, double xyz[3], int *order_used);
 
 /* A packet of states: the place for vectorised or GPU workers (scalar_batch loops). */
 typedef biref_status (*batch_worker)(const biref_integrator *it, const biref_slab_state *states, size_t n,
@@ -33,20 +34,27 @@ void biref_integrator_options_default(biref_integrator_options *o)
 }
 
 /* The analytic method per side: eq. 25, S = E + 2H, for the one side asked (half the work of
- * biref_spectrum_analytic), mixed for the paper's light. */
-static biref_status side_analytic(const biref_integrator *it, const biref_slab_state *st, int which,
+ * biref_spectrum_analytic), with the paper's light folded into the sums (analytic_mixed.c). */
+static biref_status side_analytic(const biref_integrator *it, const biref_slab_state *st,
+                                  const biref_opl_footprint *fp, int which,
                                   const biref_light *l, double xyz[3], int *order_used)
 {
-    double E[2][2][3], H[2][2][3], X[2][2][3];
-    biref_analytic_terms(it->sp, st, which, E, H);
-    for (int i = 0; i < 2; i++)
-        for (int o = 0; o < 2; o++)
-            for (int j = 0; j < 3; j++) X[i][o][j] = E[i][o][j] + 2.0 * H[i][o][j];
-    biref_spectrum_mix(X, l->w_in, l->mask, xyz);
+    if (fp) {
+        /* Prefiltered phase integrals: eq. 25 per pair with the averaged look-ups, then mixed. */
+        double E[2][2][3], H[2][2][3], X[2][2][3];
+        biref_analytic_terms_footprint(it->sp, st, fp, which, E, H);
+        for (int i = 0; i < 2; i++)
+            for (int o = 0; o < 2; o++)
+                for (int j = 0; j < 3; j++) X[i][o][j] = E[i][o][j] + 2.0 * H[i][o][j];
+        biref_spectrum_mix(X, l->w_in, l->mask, xyz);
+        return BIREF_OK;
+    }
+    biref_analytic_mixed(it->sp, st, which, l->w_in, l->mask, xyz);
     return BIREF_OK;
 }
 
-static biref_status side_numeric(const biref_integrator *it, const biref_slab_state *st, int which,
+static biref_status side_numeric(const biref_integrator *it, const biref_slab_state *st,
+                                  const biref_opl_footprint *fp, int which,
                                  const biref_light *l, double xyz[3], int *order_used)
 {
     biref_spectrum_numeric_polarized(it->plan, st, which, (const double complex(*)[2])l->C,
@@ -54,12 +62,13 @@ static biref_status side_numeric(const biref_integrator *it, const biref_slab_st
     return BIREF_OK;
 }
 
-static biref_status side_expansion(const biref_integrator *it, const biref_slab_state *st, int which,
+static biref_status side_expansion(const biref_integrator *it, const biref_slab_state *st,
+                                  const biref_opl_footprint *fp, int which,
                                    const biref_light *l, double xyz[3], int *order_used)
 {
-    biref_status s = biref_spectrum_expansion_polarized(it->sp, st, which, (const double complex(*)[2])l->C,
-                                                        l->has_analyzer ? (const double complex(*)[2])l->P : NULL,
-                                                        &it->xopts, xyz, order_used);
+    biref_status s = biref_expansion_polarized_footprint(it->sp, st, fp, which, (const double complex(*)[2])l->C,
+                                                         l->has_analyzer ? (const double complex(*)[2])l->P : NULL,
+                                                         &it->xopts, xyz, order_used);
     return s;
 }
 
@@ -130,6 +139,13 @@ static int finite3(const double v[3]) { return isfinite(v[0]) && isfinite(v[1]) 
 biref_status biref_integrate(const biref_integrator *it, const biref_slab_state *st, biref_sides sides,
                              const biref_light *light, biref_integration *out)
 {
+    return biref_integrate_footprint(it, st, NULL, sides, light, out);
+}
+
+biref_status biref_integrate_footprint(const biref_integrator *it, const biref_slab_state *st,
+                                       const biref_opl_footprint *fp, biref_sides sides, const biref_light *light,
+                                       biref_integration *out)
+{
     out->order_used[0] = out->order_used[1] = -1;
     if (!(sides & BIREF_SIDE_BOTH) || (sides & ~BIREF_SIDE_BOTH)) return BIREF_ERR_INVALID;
     if (it->method == BIREF_METHOD_ANALYTIC && !light->sp_model) return BIREF_ERR_INVALID;
@@ -145,7 +161,7 @@ biref_status biref_integrate(const biref_integrator *it, const biref_slab_state 
     for (int w = 0; w < 2; w++) {
         if (!(sides & (w ? BIREF_SIDE_REFLECTION : BIREF_SIDE_TRANSMISSION))) continue;
         double *xyz = w ? out->R : out->T;
-        biref_status s = it->side(it, st, w ? BIREF_REFLECTION : BIREF_TRANSMISSION, light, xyz, &out->order_used[w]);
+        biref_status s = it->side(it, st, fp, w ? BIREF_REFLECTION : BIREF_TRANSMISSION, light, xyz, &out->order_used[w]);
         if (s != BIREF_OK) return s;
         if (!finite3(xyz)) return BIREF_ERR_ILLCOND;
     }

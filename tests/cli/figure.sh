@@ -28,4 +28,11 @@ touch "$tmpdir/afile"
 expect_error "output under a regular file" figure fig5 -o "$tmpdir/afile/sub" --quick
 expect_error "output is a file" figure fig5 -o "$tmpdir/afile" --quick
 expect_error "missing parent" figure fig5 -o "$tmpdir/no/such/dir" --quick
+# Inputs are checked before any figure is computed: one error line, no progress before it.
+expect_error "fig9 without its scenes" figure fig9 --quick --scenes "$tmpdir/nodir" -o "$tmpdir/fig9out"
+expect_error "table1 without its scenes" figure table1 --quick --scenes "$tmpdir/nodir" -o "$tmpdir/fig9out"
+mkdir "$tmpdir/badscenes"
+echo '{"camera": ' >"$tmpdir/badscenes/fig9b.json"
+expect_error "all with a broken scene" figure all --quick --scenes "$tmpdir/badscenes" -o "$tmpdir/allout"
+[ ! -e "$tmpdir/allout/fig5.csv" ] || { echo "FAIL (fig5 computed before the scene check)"; fails=$((fails + 1)); }
 finish

@@ -96,6 +96,21 @@ expect_error "diff not a png" diff "$tmpdir/a.png" "$good"
 expect_error "diff missing file" diff "$tmpdir/a.png" "$tmpdir/none.png"
 expect_error "diff one argument" diff "$tmpdir/a.png"
 
+# Anti-aliasing: prefilter is the default of the analytic method (json says so); none and
+# --supersample work; the numeric methods refuse the prefilter; bad values are usage errors.
+expect_ok "render default antialias" render "$good" -o "$tmpdir/p.png" "${small[@]}" --json
+expect_grep "default is prefilter" '"antialias":[[:space:]]*"prefilter"'
+expect_ok "render antialias none" render "$good" -o "$tmpdir/p.png" "${small[@]}" --antialias none --json
+expect_grep "none in json" '"antialias":[[:space:]]*"none"'
+expect_ok "render supersample" render "$good" -o "$tmpdir/p.png" "${small[@]}" --supersample 2 --json
+expect_grep "supersample in json" '"supersample":[[:space:]]*2'
+expect_ok "numeric defaults to none" render "$good" -o "$tmpdir/p.png" "${small[@]}" --method numeric --samples 8
+expect_error "prefilter with numeric" render "$good" -o "$tmpdir/p.png" "${small[@]}" --method numeric --antialias prefilter
+expect_error "bad antialias" render "$good" -o "$tmpdir/p.png" "${small[@]}" --antialias box
+expect_error "supersample 0" render "$good" -o "$tmpdir/p.png" "${small[@]}" --supersample 0
+expect_error "supersample too large" render "$good" -o "$tmpdir/p.png" "${small[@]}" --supersample 65
+expect_ok "diff map without legend" diff "$tmpdir/a.png" "$tmpdir/b.png" -o "$tmpdir/d2.png" --no-legend
+
 # bench: JSON keys, extrapolation under a tiny budget.
 expect_ok "bench json" bench --scene "$good" --width 32 --height 18 --methods analytic,numeric-8 --max-seconds 2 --json
 for key in width height threads methods method ms_per_frame ns_per_pixel extrapolated; do

@@ -64,7 +64,7 @@ static void panel(double vx0, double vx1, double vy0, double vy1, double xmin, d
     }
 }
 
-/* A horizontal guide at ΔE00 = 1 with its label. */
+/* A horizontal guide at ΔE00 = 1, with its label (label_left < 0: none; the legend names it). */
 static void jnd_line(double x0, double x1, int label_left)
 {
     double x[2] = {x0, x1}, y[2] = {0.0, 0.0};
@@ -72,6 +72,10 @@ static void jnd_line(double x0, double x1, int label_left)
     pllsty(3);
     plline(2, x, y);
     pllsty(1);
+    if (label_left < 0) {
+        plcol0(FIG_BLACK);
+        return;
+    }
     plschr(0.0, SMALL_SCALE);
     plptex(label_left ? x0 + 0.03 * (x1 - x0) : x1 - 0.03 * (x1 - x0), 0.05, 1.0, 0.0, label_left ? 0.0 : 1.0,
            "ΔE00 = 1");
@@ -224,7 +228,8 @@ int acc_plot_vs_theta(const char *path, const acc_plot_theta_data *d)
             const double vx0 = left + m * (pw + gap), vy0 = w ? 0.14 : 0.6;
             panel(vx0, vx0 + pw, vy0, vy0 + 0.33, th0, th1, DE_FLOOR, ymax, 0, "θ (degrees)",
                   m == 0 ? "ΔE00 against the reference" : "", title, NULL);
-            jnd_line(th0, th1, 1);
+            /* Named in the legend: a label inside the panel sat on the axis ticks and the data. */
+            jnd_line(th0, th1, -1);
             if (d->mark_deg > 0.0 && d->mark_deg < th1) {
                 double gx[2] = {d->mark_deg, d->mark_deg}, gy[2] = {log10(DE_FLOOR), log10(ymax)};
                 plcol0(FIG_GREY);
@@ -257,13 +262,21 @@ int acc_plot_vs_theta(const char *path, const acc_plot_theta_data *d)
     enum { MAXL = 16 };
     legend_entry leg[MAXL];
     int nl = 0;
-    for (int k = 0; k < d->nmeth && nl < MAXL - 3; k++) leg[nl++] = (legend_entry){d->meth_name[k], d->meth_color[k], 1, 1.6, NULL};
+    for (int k = 0; k < d->nmeth && nl < MAXL - 4; k++) leg[nl++] = (legend_entry){d->meth_name[k], d->meth_color[k], 1, 1.6, NULL};
     leg[nl++] = (legend_entry){"max over azimuths", FIG_BLACK, 1, 1.6, NULL};
     leg[nl++] = (legend_entry){"mean over azimuths", FIG_BLACK, 2, 1.0, NULL};
     char guide[64];
     snprintf(guide, sizeof guide, "θ = %g°", d->mark_deg);
     if (d->mark_deg > 0.0 && d->mark_deg < th1) leg[nl++] = (legend_entry){guide, FIG_GREY, 3, 1.0, NULL};
+    leg[nl++] = (legend_entry){"ΔE00 = 1", FIG_GREY, 3, 1.0, NULL};
     bottom_legend(nl, leg);
+    /* Say what the log axis cannot show. */
+    plvpor(0.03, 0.97, 0.965, 0.995); /* above the panel titles */
+    plwind(0.0, 1.0, 0.0, 1.0);
+    plschr(0.0, SMALL_SCALE);
+    plcol0(FIG_BLACK);
+    plptex(0.0, 0.5, 1.0, 0.0, 0.0, "ΔE00 below 10#u-3#d is drawn at 10#u-3#d (the bottom axis): a log axis cannot show 0.");
+    plschr(0.0, TEXT_SCALE);
     if (fig_plot_end()) return cli_error("accuracy", "--plot-dir: %s", fig_plot_message()), -1;
     return 0;
 }

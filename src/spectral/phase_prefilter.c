@@ -1,0 +1,155 @@
+/* Pre-integrated phase table for spatial anti-aliasing (docs/PHYSICS.md, "Spatial anti-aliasing").
+ *
+ * The box average of S(e^{ikD}) over [a, b] is (Q(b) - Q(a)) / (b - a) with Q an antiderivative:
+ *     Q(D) = S(e^{2 pi i D / lambda} lambda / (2 pi i)),   dQ/dD = S(e^{2 pi i D / lambda}).
+ * Q is tabulated like the point table (spectral_context.c): demodulated by the band-centre
+ * frequency nu_c, on the same nodes, with its derivative for cubic Hermite interpolation. Beyond
+ * the table, the endpoint asymptotics of S integrated once more. */
+#include "spectral/phase_prefilter.h"
+
+#include <complex.h>
+#include <math.h>
+#include <stdlib.h>
+
+#include "spectral/spectral_internal.h"
+
+/* Same quadrature as the point table (midpoint rule, relative error (phi' h)^2 / 24). */
+#define BUILD_DLAMBDA_NM 0.05
+/* Below this width the box average and the point value differ by < (2 pi w / 380 nm)^2 / 24 < 1e-8. */
+#define POINT_WIDTH_NM 1e-3
+
+struct biref_phase_prefilter {
+    const biref_spectral *sp;
+    double *table; /* [m][band][re, im, dre/dD, dim/dD] of q(D) = e^{-2 pi i nu_c D} Q(D) */
+};
+
+biref_status biref_phase_prefilter_create(const biref_spectral *sp, biref_phase_prefilter **out)
+{
+    if (!sp || !out) return BIREF_ERR_INVALID;
+    *out = NULL;
+    biref_phase_prefilter *pf = calloc(1, sizeof *pf);
+    if (!pf) return BIREF_ERR_NOMEM;
+    pf->sp = sp;
+    pf->table = calloc((size_t)sp->nodes * 12, sizeof *pf->table);
+    if (!pf->table) {
+        free(pf);
+        return BIREF_ERR_NOMEM;
+    }
+    const double lmin = sp->cfg.lambda_min_nm, lmax = sp->cfg.lambda_max_nm;
+    const int n = (int)ceil((lmax - lmin) / BUILD_DLAMBDA_NM);
+    const double dl = (lmax - lmin) / n;
+    for (int i = 0; i < n; i++) {
+        double lambda = lmin + (i + 0.5) * dl, lam[3];
+        biref_cmf_band_eval(&sp->band, lambda, lam);
+        double f = 1.0 / lambda - sp->nu_c;
+        double complex rot = cexp(2.0 * M_PI * I * f * sp->step), z = lambda / (2.0 * M_PI * I);
+        double complex dz = 2.0 * M_PI * I * f;
+        for (int m = 0; m < sp->nodes; m++) {
+            double *row = pf->table + (size_t)m * 12;
+            double complex zd = dz * z;
+            for (int j = 0; j < 3; j++) {
+                double w = lam[j] * dl;
+                row[4 * j + 0] += w * creal(z);
+                row[4 * j + 1] += w * cimag(z);
+                row[4 * j + 2] += w * creal(zd);
+                row[4 * j + 3] += w * cimag(zd);
+            }
+            z *= rot;
+        }
+    }
+    *out = pf;
+    return BIREF_OK;
+}
+
+void biref_phase_prefilter_destroy(biref_phase_prefilter *pf)
+{
+    if (!pf) return;
+    free(pf->table);
+    free(pf);
+}
+
+/* Q_j(D) for D >= 0. */
+static void antiderivative(const biref_phase_prefilter *pf, double d, double complex q[3])
+{
+    const biref_spectral *sp = pf->sp;
+    if (!(d <= sp->d_max)) {
+        /* S's endpoint asymptotics i/(2 pi D) [Λ λ^2 e^{2 pi i D/λ}] integrated once more. */
+        const double lmin = sp->cfg.lambda_min_nm, lmax = sp->cfg.lambda_max_nm;
+        double complex ph_hi = cycles_exp(d / lmax), ph_lo = cycles_exp(d / lmin);
+        double e = 1.0 / (4.0 * M_PI * M_PI * d);
+        for (int j = 0; j < 3; j++) q[j] = e * (sp->edge_hi[j] * lmax * ph_hi - sp->edge_lo[j] * lmin * ph_lo);
+        return;
+    }
+    double x = d / sp->step;
+    int m = (int)x;
+    if (m >= sp->nodes - 1) m = sp->nodes - 2;
+    double t = x - m, t2 = t * t, t3 = t2 * t;
+    double h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + t, h01 = -2 * t3 + 3 * t2, h11 = t3 - t2;
+    const double *a = pf->table + (size_t)m * 12, *b = a + 12;
+    double cr, ci;
+    small_angle_cos_sin(2.0 * M_PI * sp->nu_c * (d - m * sp->step), &cr, &ci);
+    double complex carrier = (sp->carrier[2 * m] + I * sp->carrier[2 * m + 1]) * (cr + I * ci);
+    for (int j = 0; j < 3; j++) {
+        double re = h00 * a[4 * j] + h10 * sp->step * a[4 * j + 2] + h01 * b[4 * j] + h11 * sp->step * b[4 * j + 2];
+        double im = h00 * a[4 * j + 1] + h10 * sp->step * a[4 * j + 3] + h01 * b[4 * j + 1] +
+                    h11 * sp->step * b[4 * j + 3];
+        q[j] = carrier * (re + I * im);
+    }
+}
+
+/* Q_j(D) for any D: S(e^{-ikD}) = conj S(e^{ikD}) gives Q(-D) = -conj Q(D). */
+static void antiderivative_signed(const biref_phase_prefilter *pf, double d, double complex q[3])
+{
+    antiderivative(pf, fabs(d), q);
+    if (d < 0.0)
+        for (int j = 0; j < 3; j++) q[j] = -conj(q[j]);
+}
+
+void biref_phase_integrals_box(const biref_phase_prefilter *pf, double opd, double width, double c[3], double s[3])
+{
+    width = fabs(width);
+    if (!(width > POINT_WIDTH_NM)) {
+        biref_spectral_phase_integrals(pf->sp, opd, c, s);
+        return;
+    }
+    double lo = opd - 0.5 * width, hi = opd + 0.5 * width;
+    const double far = pf->sp->d_far;
+    if (lo > far || hi < -far) {
+        for (int j = 0; j < 3; j++) c[j] = s[j] = 0.0;
+        return;
+    }
+    double complex qa[3], qb[3];
+    antiderivative_signed(pf, lo, qa);
+    antiderivative_signed(pf, hi, qb);
+    for (int j = 0; j < 3; j++) {
+        double complex v = (qb[j] - qa[j]) / width;
+        c[j] = creal(v);
+        s[j] = cimag(v);
+    }
+}
+
+void biref_opl_footprint_flip(const biref_opl_footprint *in, biref_opl_footprint *out)
+{
+    static const int swap[4] = {BIREF_LEG_UP_O, BIREF_LEG_UP_E, BIREF_LEG_DOWN_O, BIREF_LEG_DOWN_E};
+    out->pf = in->pf;
+    for (int l = 0; l < 4; l++) {
+        out->grad[l][0] = in->grad[swap[l]][0];
+        out->grad[l][1] = in->grad[swap[l]][1];
+    }
+}
+
+void biref_phase_integrals_footprint(const biref_spectral *sp, const biref_opl_footprint *fp, double opd,
+                                     const int n[4], double c[3], double s[3])
+{
+    if (!fp || !fp->pf) {
+        biref_spectral_phase_integrals(sp, opd, c, s);
+        return;
+    }
+    double gx = 0.0, gy = 0.0;
+    for (int l = 0; l < 4; l++) {
+        gx += n[l] * fp->grad[l][0];
+        gy += n[l] * fp->grad[l][1];
+    }
+    /* A box of the variance of the pixel's (trapezoidal) distribution of D: (gx^2 + gy^2) / 12. */
+    biref_phase_integrals_box(fp->pf, opd, sqrt(gx * gx + gy * gy), c, s);
+}

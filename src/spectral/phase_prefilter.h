@@ -1,0 +1,56 @@
+/* Spatial anti-aliasing of the phase integrals: S(cos kD) and S(sin kD) averaged over the range
+ * of path differences D that one pixel covers (docs/PHYSICS.md, "Spatial anti-aliasing"). */
+#ifndef BIREF_PHASE_PREFILTER_H
+#define BIREF_PHASE_PREFILTER_H
+
+#include "biref/integrator.h"
+#include "biref/spectral.h"
+
+/* Table of the antiderivative of S(e^{ikD}) over D; immutable after creation, shareable. */
+typedef struct biref_phase_prefilter biref_phase_prefilter;
+
+biref_status biref_phase_prefilter_create(const biref_spectral *sp, biref_phase_prefilter **out);
+void biref_phase_prefilter_destroy(biref_phase_prefilter *pf);
+
+/* Box averages over [opd - width/2, opd + width/2] of S(cos kD) and S(sin kD) per band; width <= a
+ * tiny threshold gives the point values of biref_spectral_phase_integrals. */
+void biref_phase_integrals_box(const biref_phase_prefilter *pf, double opd_nm, double width_nm, double c[3],
+                               double s[3]);
+
+/* Leg types of a prepared slab state, in the order of the gradients below. */
+enum { BIREF_LEG_DOWN_O = 0, BIREF_LEG_DOWN_E = 1, BIREF_LEG_UP_O = 2, BIREF_LEG_UP_E = 3 };
+
+/* A pixel's footprint in optical path: grad[leg][k] is how much Re(opl) of that leg type changes
+ * across the pixel along image axis k (x, y). Every path difference is an integer combination
+ * sum_l n_l opl_l, so its change across the pixel is sum_l n_l grad[l]; the pixel averages its
+ * phase integrals over a box of the same variance as that (linear) change over the square pixel. */
+typedef struct {
+    const biref_phase_prefilter *pf;
+    double grad[4][2];
+} biref_opl_footprint;
+
+/* The same footprint for the state lit from the other face (biref_slab_state_flip swaps legs). */
+void biref_opl_footprint_flip(const biref_opl_footprint *in, biref_opl_footprint *out);
+
+/* Phase integrals of the path difference opd = sum_l n[l] opl_l, averaged over the footprint
+ * (fp NULL: point values). */
+void biref_phase_integrals_footprint(const biref_spectral *sp, const biref_opl_footprint *fp, double opd_nm,
+                                     const int n[4], double c[3], double s[3]);
+
+/* The analytic method's terms (biref_analytic_terms) and the expansion's detected intensity
+ * (biref_spectrum_expansion_polarized) with every phase integral averaged over the footprint fp
+ * (NULL: identical to the unfiltered functions). */
+void biref_analytic_terms_footprint(const biref_spectral *sp, const biref_slab_state *st,
+                                    const biref_opl_footprint *fp, int which, double E[2][2][3], double H[2][2][3]);
+biref_status biref_expansion_polarized_footprint(const biref_spectral *sp, const biref_slab_state *st,
+                                                 const biref_opl_footprint *fp, int which, const double complex C[2][2],
+                                                 const double complex P[2][2], const biref_expansion_opts *opts,
+                                                 double xyz[3], int *order_used);
+
+/* biref_integrate with the phase integrals averaged over the footprint fp (the numeric methods,
+ * which have no phase table, ignore it; NULL: identical to biref_integrate). */
+biref_status biref_integrate_footprint(const biref_integrator *it, const biref_slab_state *st,
+                                       const biref_opl_footprint *fp, biref_sides sides, const biref_light *light,
+                                       biref_integration *out);
+
+#endif

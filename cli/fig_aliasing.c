@@ -13,6 +13,7 @@
 #include "biref/biref.h"
 #include "cli_common.h"
 #include "de_scale.h"
+#include "fig_common.h"
 
 static const char *const CMD = "figure";
 
@@ -170,18 +171,18 @@ int fig_aliasing(const char *dir, const char *scenes, int quick, int threads)
     char csv_path[4096], png_path[4096];
     snprintf(csv_path, sizeof csv_path, "%s/aliasing.csv", dir);
     snprintf(png_path, sizeof png_path, "%s/aliasing.png", dir);
-    FILE *csv = fopen(csv_path, "w");
-    if (!csv) return cli_error(CMD, "cannot write %s", csv_path), 1;
+    biref_outfile *csv_out = fig_open_out(csv_path);
+    if (!csv_out) return 1;
+    FILE *csv = biref_outfile_stream(csv_out);
     fprintf(csv, "case,variant,width,height,row_begin,row_end,samples_per_axis,dE00_mean,dE00_p95,dE00_max,"
                  "render_seconds,cost_vs_plain\n");
     case_result res[NCASES];
     memset(res, 0, sizeof res);
     int rc = 0, n = 0;
     for (int i = 0; i < NCASES && !rc; i++, n++) rc = run_case(&CASES[i], scenes, quick, threads, csv, &res[i]);
-    int bad = ferror(csv);
-    if (fclose(csv) != 0 || bad) rc = rc ? rc : (cli_error(CMD, "cannot write %s", csv_path), 1);
+    if (rc) fig_discard(csv_out);
+    else if (fig_close_csv(csv_out, csv_path)) rc = 1;
     if (!rc) {
-        printf("wrote %s\n", csv_path);
         /* One block per case: titles, the four crops, the three ΔE00 maps against the reference. */
         const double tw = 300, gap = 8, head = 34;
         double H = gap + CLI_DE_LEGEND_HEIGHT + 24;
@@ -226,11 +227,19 @@ int fig_aliasing(const char *dir, const char *scenes, int quick, int threads)
         }
         cli_de_legend(cr, gap, y + 8, 700, "ΔE00 against the reference (the scale of biref diff):");
         cairo_surface_flush(out);
-        cairo_status_t cs = cairo_surface_write_to_png(out, png_path);
+        biref_outfile *png = fig_open_out(png_path);
+        cairo_status_t cs = png ? cairo_surface_write_to_png_stream(out, fig_write_stream, biref_outfile_stream(png))
+                                : CAIRO_STATUS_WRITE_ERROR;
         cairo_destroy(cr);
         cairo_surface_destroy(out);
-        if (cs != CAIRO_STATUS_SUCCESS) rc = (cli_error(CMD, "cannot write %s: %s", png_path, cairo_status_to_string(cs)), 1);
-        else printf("wrote %s\n", png_path);
+        if (!png) {
+            rc = 1;
+        } else if (cs != CAIRO_STATUS_SUCCESS) {
+            fig_discard(png);
+            rc = (cli_error(CMD, "cannot write %s: %s", png_path, cairo_status_to_string(cs)), 1);
+        } else if (fig_close_csv(png, png_path)) {
+            rc = 1;
+        }
     }
     for (int i = 0; i < NCASES; i++)
         for (int v = 0; v < NVAR; v++) free(res[i].rgb[v]), free(res[i].map[v]);

@@ -82,7 +82,7 @@ int fig5(const fig_ctx *c)
     for (int m = 0; m < nm; m++) {
         const double *o = J + ((size_t)m * 3) * (size_t)n;
         /* Headroom above the curves (they reach 1) holds the legend, clear of the data. */
-        fig_plot_panel(0, 89, 0, 1.32, "θ (degrees)", "magnitude", FIG5_MATERIALS[m].label);
+        fig_plot_panel(0, 89, 0, 1.45, "θ (degrees)", "magnitude", FIG5_MATERIALS[m].label);
         fig_plot_line(n, th, o + n, FIG_BLUE, 1.0);
         fig_plot_line(n, th, o + 2 * (size_t)n, FIG_RED, 1.0);
         fig_plot_line(n, th, o, FIG_BLACK, 1.0);

@@ -80,21 +80,7 @@ static void antiderivative(const biref_phase_prefilter *pf, double d, double com
         for (int j = 0; j < 3; j++) q[j] = e * (sp->edge_hi[j] * lmax * ph_hi - sp->edge_lo[j] * lmin * ph_lo);
         return;
     }
-    double x = d / sp->step;
-    int m = (int)x;
-    if (m >= sp->nodes - 1) m = sp->nodes - 2;
-    double t = x - m, t2 = t * t, t3 = t2 * t;
-    double h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + t, h01 = -2 * t3 + 3 * t2, h11 = t3 - t2;
-    const double *a = pf->table + (size_t)m * 12, *b = a + 12;
-    double cr, ci;
-    small_angle_cos_sin(2.0 * M_PI * sp->nu_c * (d - m * sp->step), &cr, &ci);
-    double complex carrier = (sp->carrier[2 * m] + I * sp->carrier[2 * m + 1]) * (cr + I * ci);
-    for (int j = 0; j < 3; j++) {
-        double re = h00 * a[4 * j] + h10 * sp->step * a[4 * j + 2] + h01 * b[4 * j] + h11 * sp->step * b[4 * j + 2];
-        double im = h00 * a[4 * j + 1] + h10 * sp->step * a[4 * j + 3] + h01 * b[4 * j + 1] +
-                    h11 * sp->step * b[4 * j + 3];
-        q[j] = carrier * (re + I * im);
-    }
+    spectral_table_eval(sp, pf->table, d, q);
 }
 
 /* Q_j(D) for any D: S(e^{-ikD}) = conj S(e^{ikD}) gives Q(-D) = -conj Q(D). */

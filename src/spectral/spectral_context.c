@@ -209,24 +209,11 @@ void biref_spectral_phase_integrals(const biref_spectral *sp, double opd, double
         }
         return;
     }
-    double x = opd / sp->step;
-    int m = (int)x;
-    if (m >= sp->nodes - 1) m = sp->nodes - 2;
-    double t = x - m, t2 = t * t, t3 = t2 * t;
-    /* Cubic Hermite basis. */
-    double h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + t, h01 = -2 * t3 + 3 * t2, h11 = t3 - t2;
-    const double *a = sp->table + (size_t)m * 12, *b = a + 12;
-    /* Carrier e^{2 pi i nu_c D} = node carrier times a small rotation (nu_c * step < 0.11 cycles). */
-    double cr, ci;
-    small_angle_cos_sin(2.0 * M_PI * sp->nu_c * (opd - m * sp->step), &cr, &ci);
-    double complex carrier = (sp->carrier[2 * m] + I * sp->carrier[2 * m + 1]) * (cr + I * ci);
+    double complex v[3];
+    spectral_table_eval(sp, sp->table, opd, v);
     for (int j = 0; j < 3; j++) {
-        double re = h00 * a[4 * j] + h10 * sp->step * a[4 * j + 2] + h01 * b[4 * j] + h11 * sp->step * b[4 * j + 2];
-        double im = h00 * a[4 * j + 1] + h10 * sp->step * a[4 * j + 3] + h01 * b[4 * j + 1] +
-                    h11 * sp->step * b[4 * j + 3];
-        double complex v = carrier * (re + I * im);
-        c[j] = creal(v);
-        s[j] = sign * cimag(v);
+        c[j] = creal(v[j]);
+        s[j] = sign * cimag(v[j]);
     }
 }
 

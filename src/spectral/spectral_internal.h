@@ -58,6 +58,31 @@ static inline double complex cycles_exp(double x)
     return z;
 }
 
+/* A demodulated table on the context's nodes (12 doubles per node: per band the value's real and
+ * imaginary parts and their derivatives in D) at 0 <= D <= d_max: cubic Hermite between nodes,
+ * re-modulated by the band-centre carrier e^{2 pi i nu_c D} (node carrier times a small rotation,
+ * nu_c * step < 0.11 cycles). The phase look-up table and the prefilter's antiderivative table
+ * share these nodes. */
+static inline void spectral_table_eval(const struct biref_spectral *sp, const double *table, double d,
+                                       double complex v[3])
+{
+    double x = d / sp->step;
+    int m = (int)x;
+    if (m >= sp->nodes - 1) m = sp->nodes - 2;
+    double t = x - m, t2 = t * t, t3 = t2 * t;
+    double h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + t, h01 = -2 * t3 + 3 * t2, h11 = t3 - t2;
+    const double *a = table + (size_t)m * 12, *b = a + 12;
+    double cr, ci;
+    small_angle_cos_sin(2.0 * M_PI * sp->nu_c * (d - m * sp->step), &cr, &ci);
+    double complex carrier = (sp->carrier[2 * m] + I * sp->carrier[2 * m + 1]) * (cr + I * ci);
+    for (int j = 0; j < 3; j++) {
+        double re = h00 * a[4 * j] + h10 * sp->step * a[4 * j + 2] + h01 * b[4 * j] + h11 * sp->step * b[4 * j + 2];
+        double im = h00 * a[4 * j + 1] + h10 * sp->step * a[4 * j + 3] + h01 * b[4 * j + 1] +
+                    h11 * sp->step * b[4 * j + 3];
+        v[j] = carrier * (re + I * im);
+    }
+}
+
 struct biref_numeric_plan {
     int samples;
     double *lambda;

@@ -97,36 +97,6 @@ static double render_rows(const fig_ctx *c, const biref_scene *sc, const method_
     return t;
 }
 
-static cairo_surface_t *surface_from_rgb(const unsigned char *rgb, int w, int h)
-{
-    cairo_surface_t *s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h);
-    unsigned char *data = cairo_image_surface_get_data(s);
-    int stride = cairo_image_surface_get_stride(s);
-    cairo_surface_flush(s);
-    for (int y = 0; y < h; y++) {
-        uint32_t *row = (uint32_t *)(data + (size_t)y * stride);
-        for (int x = 0; x < w; x++) {
-            const unsigned char *p = rgb + 3 * ((size_t)y * w + x);
-            row[x] = ((uint32_t)p[0] << 16) | ((uint32_t)p[1] << 8) | p[2];
-        }
-    }
-    cairo_surface_mark_dirty(s);
-    return s;
-}
-
-static void draw_tile(cairo_t *cr, cairo_surface_t *img, int w, int h, double x, double y, double scale)
-{
-    cairo_save(cr);
-    cairo_translate(cr, x, y);
-    cairo_scale(cr, scale, scale);
-    cairo_set_source_surface(cr, img, 0, 0);
-    /* Nearest neighbour: enlarged pixels stay pixels, so aliasing is shown, not blurred. */
-    cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
-    cairo_rectangle(cr, 0, 0, w, h);
-    cairo_fill(cr);
-    cairo_restore(cr);
-}
-
 static int fig9_scene(const fig_ctx *c, const char *scenes, const char *name, FILE *csv)
 {
     const int w = c->quick ? 64 : 240, h = c->quick ? 36 : 135;
@@ -184,13 +154,9 @@ static int fig9_scene(const fig_ctx *c, const char *scenes, const char *name, FI
         cairo_set_source_rgb(cr, 0, 0, 0);
         cairo_move_to(cr, x, head - 6);
         cairo_show_text(cr, FIG9_METHODS[m].name);
-        cairo_surface_t *img = surface_from_rgb(rgb + (size_t)m * npx * 3, w, h);
-        draw_tile(cr, img, w, h, x, head, scale);
-        cairo_surface_destroy(img);
+        fig_draw_rgb_tile(cr, rgb + (size_t)m * npx * 3, w, h, x, head, scale);
         if (m == FIG9_GT) continue; /* its map against itself is empty */
-        img = surface_from_rgb(rgb + (size_t)(FIG9_NMETHODS + m) * npx * 3, w, h);
-        draw_tile(cr, img, w, h, x, head + thh + gap, scale);
-        cairo_surface_destroy(img);
+        fig_draw_rgb_tile(cr, rgb + (size_t)(FIG9_NMETHODS + m) * npx * 3, w, h, x, head + thh + gap, scale);
     }
     double by = head + 2 * (thh + gap) + 6;
     cli_de_legend(cr, gap, by, 640, "ΔE00 vs ground truth (second row; the scale of biref diff):");

@@ -74,37 +74,6 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-static cairo_surface_t *surface_from_rgb(const unsigned char *rgb, int w, int h)
-{
-    cairo_surface_t *s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h);
-    unsigned char *data = cairo_image_surface_get_data(s);
-    int stride = cairo_image_surface_get_stride(s);
-    cairo_surface_flush(s);
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++) {
-            const unsigned char *c = rgb + 3 * ((size_t)y * w + x);
-            ((uint32_t *)(data + (size_t)y * stride))[x] = (uint32_t)c[0] << 16 | (uint32_t)c[1] << 8 | c[2];
-        }
-    cairo_surface_mark_dirty(s);
-    return s;
-}
-
-/* One tile, scaled to width tw (nearest neighbour, so pixels stay visible). */
-static void draw_tile(cairo_t *cr, const unsigned char *rgb, int w, int h, double x, double y, double tw)
-{
-    cairo_surface_t *img = surface_from_rgb(rgb, w, h);
-    double s = tw / w;
-    cairo_save(cr);
-    cairo_translate(cr, x, y);
-    cairo_scale(cr, s, s);
-    cairo_set_source_surface(cr, img, 0, 0);
-    cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
-    cairo_rectangle(cr, 0, 0, w, h);
-    cairo_fill(cr);
-    cairo_restore(cr);
-    cairo_surface_destroy(img);
-}
-
 typedef struct {
     int w, h; /* crop */
     unsigned char *rgb[NVAR], *map[NVAR];
@@ -217,8 +186,8 @@ int fig_aliasing(const char *dir, const char *scenes, int quick, int threads)
                     snprintf(line, sizeof line, "mean ΔE00 %.3f, cost %.2fx plain", r->mean[v], r->secs[v] / r->secs[0]);
                 cairo_move_to(cr, x, y + 27);
                 cairo_show_text(cr, line);
-                draw_tile(cr, r->rgb[v], r->w, r->h, x, y + head, tw);
-                if (v != REF) draw_tile(cr, r->map[v], r->w, r->h, x, y + head + th + gap, tw);
+                fig_draw_rgb_tile(cr, r->rgb[v], r->w, r->h, x, y + head, tw / r->w);
+                if (v != REF) fig_draw_rgb_tile(cr, r->map[v], r->w, r->h, x, y + head + th + gap, tw / r->w);
             }
             cairo_set_source_rgb(cr, 0, 0, 0);
             cairo_move_to(cr, gap + REF * (tw + gap), y + head + th + gap + 14);

@@ -1,4 +1,5 @@
 /* Helpers of the figures (fig_common.h). */
+#include <stdint.h>
 #include <stdio.h>
 
 #include "cli_common.h"
@@ -46,6 +47,37 @@ int fig_end(const char *path)
     if (fig_plot_end()) return cli_error(FIG_CMD, "%s", fig_plot_message()), -1;
     printf("wrote %s\n", path);
     return 0;
+}
+
+static cairo_surface_t *surface_from_rgb(const unsigned char *rgb, int w, int h)
+{
+    cairo_surface_t *s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h);
+    unsigned char *data = cairo_image_surface_get_data(s);
+    int stride = cairo_image_surface_get_stride(s);
+    cairo_surface_flush(s);
+    for (int y = 0; y < h; y++) {
+        uint32_t *row = (uint32_t *)(data + (size_t)y * stride);
+        for (int x = 0; x < w; x++) {
+            const unsigned char *p = rgb + 3 * ((size_t)y * w + x);
+            row[x] = ((uint32_t)p[0] << 16) | ((uint32_t)p[1] << 8) | p[2];
+        }
+    }
+    cairo_surface_mark_dirty(s);
+    return s;
+}
+
+void fig_draw_rgb_tile(cairo_t *cr, const unsigned char *rgb, int w, int h, double x, double y, double scale)
+{
+    cairo_surface_t *img = surface_from_rgb(rgb, w, h);
+    cairo_save(cr);
+    cairo_translate(cr, x, y);
+    cairo_scale(cr, scale, scale);
+    cairo_set_source_surface(cr, img, 0, 0);
+    cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
+    cairo_rectangle(cr, 0, 0, w, h);
+    cairo_fill(cr);
+    cairo_restore(cr);
+    cairo_surface_destroy(img);
 }
 
 cairo_status_t fig_write_stream(void *closure, const unsigned char *data, unsigned int length)

@@ -31,6 +31,10 @@ void fig_discard(biref_outfile *o);
 /* A PLplot page (fig_plot.h) begun and ended with one error line on failure. */
 int fig_begin(const char *path, int width, int height, int nx, int ny);
 int fig_end(const char *path);
+/* 8-bit RGB pixels (w x h) drawn at (x, y) enlarged by scale, nearest neighbour: enlarged pixels
+ * stay pixels, so aliasing is shown, not blurred. */
+void fig_draw_rgb_tile(cairo_t *cr, const unsigned char *rgb, int w, int h, double x, double y, double scale);
+
 /* cairo's PNG stream writer into a FILE *. */
 cairo_status_t fig_write_stream(void *closure, const unsigned char *data, unsigned int length);
 static inline double fig_deg2rad(double d) { return d * M_PI / 180.0; }

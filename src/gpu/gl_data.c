@@ -118,13 +118,7 @@ void biref_gl_scene_uniforms(const biref_scene *scene, const biref_spectral *sp,
     EMIT_ARRAY("u_slab_tangent", 3, ns, memcpy(v_, S[i].tangent, sizeof v_));
     EMIT_ARRAY("u_slab_bitangent", 3, ns, v3_cross(S[i].tangent, S[i].normal, v_));
     EMIT_ARRAY("u_slab_half", 2, ns, (v_[0] = 0.5 * S[i].size[0], v_[1] = 0.5 * S[i].size[1]));
-    EMIT_ARRAY("u_slab_axis", 3, ns, {
-        double b[3];
-        v3_cross(S[i].tangent, S[i].normal, b);
-        for (int k = 0; k < 3; k++)
-            v_[k] = S[i].axis[0] * S[i].tangent[k] + S[i].axis[1] * S[i].normal[k] + S[i].axis[2] * b[k];
-        v3_normalize(v_, v_);
-    });
+    EMIT_ARRAY("u_slab_axis", 3, ns, v3_slab_axis_world(S[i].axis, S[i].tangent, S[i].normal, v_));
     EMIT_ARRAY("u_slab_optics", 3, ns, (v_[0] = S[i].eta_o, v_[1] = S[i].eta_e, v_[2] = S[i].thickness_nm));
 
     const int np = scene->n_panels;

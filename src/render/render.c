@@ -70,9 +70,7 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
         v3_cross(sl->tangent, sl->normal, sl->bitangent);
         sl->half_w = 0.5 * in->size[0];
         sl->half_h = 0.5 * in->size[1];
-        for (int k = 0; k < 3; k++)
-            sl->axis_world[k] = in->axis[0] * sl->tangent[k] + in->axis[1] * sl->normal[k] + in->axis[2] * sl->bitangent[k];
-        v3_normalize(sl->axis_world, sl->axis_world);
+        v3_slab_axis_world(in->axis, sl->tangent, sl->normal, sl->axis_world);
         sl->base.eta_o = in->eta_o;
         sl->base.eta_e = in->eta_e;
         sl->base.thickness_nm = in->thickness_nm;

@@ -60,4 +60,15 @@ static inline int v3_orthonormalize(const double a[3], const double n[3], double
     return 0;
 }
 
+/* A slab's optic axis, given in its local frame (x = tangent, y = normal, z = tangent x normal,
+ * docs/SCENES.md), as a unit vector in the world. */
+static inline void v3_slab_axis_world(const double axis[3], const double tangent[3], const double normal[3],
+                                      double o[3])
+{
+    double b[3];
+    v3_cross(tangent, normal, b);
+    for (int k = 0; k < 3; k++) o[k] = axis[0] * tangent[k] + axis[1] * normal[k] + axis[2] * b[k];
+    v3_normalize(o, o);
+}
+
 #endif

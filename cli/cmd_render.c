@@ -42,7 +42,9 @@ static void help(void)
            "  --threads T          OpenMP threads (default: all cores); the image does not depend on T\n"
            "  --pfm FILE           also write linear sRGB floats as a PFM\n"
            "  --json               print {width, height, method, samples, ms, mean_srgb, ...} on stdout\n"
-           "  -q, --quiet          no progress bar (it is shown only when stderr is a terminal)\n"
+           "  -q, --quiet          no progress on stderr (default: a bar on a terminal, otherwise a\n"
+           "                       line every few seconds once the job has run 2 s)\n"
+           "  --progress           progress from the start, also when stderr is not a terminal\n"
            "  -h, --help           this help\n\n"
            "Exit status: 0 success, 1 runtime failure (e.g. unwritable output), 2 bad usage or scene.\n\n"
            "Example:\n  biref render examples/fig9a.json -o fig9a.png --method numeric --samples 128\n",
@@ -177,7 +179,7 @@ int cmd_render(int argc, char **argv)
         return cli_error(CMD, "out of memory for a %dx%d image", W, H), CLI_EXIT_FAIL;
     }
     biref_progress_bar bar;
-    biref_progress_bar_init(&bar, stderr, !gl && !quiet && isatty(fileno(stderr)), "render");
+    biref_progress_bar_init(&bar, stderr, !gl && !quiet, "render");
     biref_render_stats stats;
     double t0 = biref_wall_seconds(), gpu_ms = 0;
     char device[256] = "";

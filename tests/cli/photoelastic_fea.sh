@@ -15,7 +15,7 @@ expect_grep "wrote" "wrote .*ex.png: 48 x 48"
 # The disk from scattered nodes (0.5 mm lattice, graded at the loads) against the closed form:
 # fringe order within 0.01 in the interior (r <= 0.9 R, at least 0.4 R from the load points).
 bash "$ex/disk_nodes.sh" "$tmpdir/n.csv" "$tmpdir/b.csv" 0.5
-common=(--light mono --lambda-nm 589 --size 160 --view-mm -25,25,-25,25 --map fringe-order)
+common=(--light mono --lambda-nm 589 --size 160 --window-mm -25,-25,25,25 --map fringe-order)
 expect_ok "nodes map" photoelastic --stress-nodes "$tmpdir/n.csv" "${cols[@]}" --boundary "$tmpdir/b.csv" "${common[@]}" \
   -o "$tmpdir/n_map.csv"
 expect_ok "preset map" photoelastic --preset disk "${common[@]}" -o "$tmpdir/p_map.csv"

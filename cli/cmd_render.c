@@ -29,7 +29,7 @@ static void help(void)
            "                       path-group expansion; any polarizer, docs/PHYSICS.md §5)\n"
            "  --backend B          cpu (default) or gl: the analytic method as a GLSL shader through\n"
            "                       EGL and OpenGL >= 4.3 (any polarizer; docs/GPU.md)\n"
-           "  --samples N          spectral samples for --method numeric (default 64)\n"
+           "  --spectral-samples N spectral samples for --method numeric (default 64)\n"
            "  --order N            expansion: every pair of path groups up to order N interferes,\n"
            "                       the rest adds incoherently, 0-8 (default adaptive)\n"
            "  --tolerance E        expansion: adaptive orders' target relative error (default 1e-3;\n"
@@ -45,10 +45,12 @@ static void help(void)
            "  --chroma-map FILE    also write each pixel's dE00 from the grey of its lightness (how\n"
            "                       visible its colour is, from the floats) on biref diff's scale\n"
            "  --json               print {width, height, method, samples, ms, mean_srgb, ...} on stdout\n"
-           "  -q, --quiet          no progress bar (it is shown only when stderr is a terminal)\n"
+           "  -q, --quiet          no progress on stderr (default: a bar on a terminal, otherwise a\n"
+           "                       line every few seconds once the job has run 2 s)\n"
+           "  --progress           progress from the start, also when stderr is not a terminal\n"
            "  -h, --help           this help\n\n"
            "Exit status: 0 success, 1 runtime failure (e.g. unwritable output), 2 bad usage or scene.\n\n"
-           "Example:\n  biref render examples/fig9a.json -o fig9a.png --method numeric --samples 128\n",
+           "Example:\n  biref render examples/fig9a.json -o fig9a.png --method numeric --spectral-samples 128\n",
            BIREF_GROUND_TRUTH_SAMPLES);
 }
 
@@ -60,7 +62,8 @@ int cmd_render(int argc, char **argv)
     static const struct option longopts[] = {{"output", required_argument, 0, 'o'},
                                              {"method", required_argument, 0, OPT_METHOD},
                                              {"backend", required_argument, 0, OPT_BACKEND},
-                                             {"samples", required_argument, 0, OPT_SAMPLES},
+                                             {"spectral-samples", required_argument, 0, OPT_SAMPLES},
+                                             {"samples", required_argument, 0, OPT_SAMPLES}, /* old name */
                                              {"order", required_argument, 0, OPT_ORDER},
                                              {"tolerance", required_argument, 0, OPT_TOLERANCE},
                                              {"antialias", required_argument, 0, OPT_ANTIALIAS},
@@ -98,7 +101,7 @@ int cmd_render(int argc, char **argv)
             if (cli_parse_backend(CMD, optarg, &gl)) return CLI_EXIT_USAGE;
             break;
         case OPT_SAMPLES:
-            if (cli_parse_int(CMD, "--samples", optarg, 1, 65536, &samples)) return CLI_EXIT_USAGE;
+            if (cli_parse_int(CMD, "--spectral-samples", optarg, 1, 65536, &samples)) return CLI_EXIT_USAGE;
             have_samples = 1;
             break;
         case OPT_WIDTH:
@@ -143,7 +146,7 @@ int cmd_render(int argc, char **argv)
     if (json && (strcmp(out, "-") == 0 || (pfm && strcmp(pfm, "-") == 0)))
         return cli_error(CMD, "--json and an image on standard output ('-') exclude each other"), CLI_EXIT_USAGE;
     if (have_samples && opt.method != BIREF_METHOD_NUMERIC)
-        return cli_error(CMD, "--samples only applies to --method numeric"), CLI_EXIT_USAGE;
+        return cli_error(CMD, "--spectral-samples only applies to --method numeric"), CLI_EXIT_USAGE;
     if (have_samples) opt.samples = (int)samples;
     if (have_expansion_opt && opt.method != BIREF_METHOD_EXPANSION)
         return cli_error(CMD, "--order/--tolerance only apply to --method expansion"), CLI_EXIT_USAGE;
@@ -184,7 +187,7 @@ int cmd_render(int argc, char **argv)
         return cli_error(CMD, "out of memory for a %dx%d image", W, H), CLI_EXIT_FAIL;
     }
     biref_progress_bar bar;
-    biref_progress_bar_init(&bar, stderr, !gl && !quiet && isatty(fileno(stderr)), "render");
+    biref_progress_bar_init(&bar, stderr, !gl && !quiet, "render");
     biref_render_stats stats;
     double t0 = biref_wall_seconds(), gpu_ms = 0;
     char device[256] = "";

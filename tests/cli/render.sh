@@ -50,7 +50,7 @@ expect_error "missing scene file" render "$tmpdir/nope.json" -o "$tmpdir/t.png"
 expect_error "missing -o" render "$good"
 expect_error "missing scene argument" render -o "$tmpdir/t.png"
 expect_error "bad method" render "$good" -o "$tmpdir/t.png" --method magic
-expect_error "samples without numeric" render "$good" -o "$tmpdir/t.png" --samples 8
+expect_error "samples without numeric" render "$good" -o "$tmpdir/t.png" --spectral-samples 8
 expect_error "zero width" render "$good" -o "$tmpdir/t.png" --width 0
 expect_error "bad threads" render "$good" -o "$tmpdir/t.png" --threads x
 expect_error "unknown option" render "$good" -o "$tmpdir/t.png" --frobnicate
@@ -59,7 +59,7 @@ expect_error "world-fixed polarizer with analytic" render "$tmpdir/wf.json" -o "
 grep -q "world-fixed polarizers need --method expansion, numeric or ground-truth" "$tmpdir/err" ||
   { echo "FAIL (world-fixed message)"; fails=$((fails + 1)); }
 expect_ok "world-fixed polarizer with numeric" render "$tmpdir/wf.json" -o "$tmpdir/wf.png" "${small[@]}" \
-  --method numeric --samples 8
+  --method numeric --spectral-samples 8
 expect_ok "world-fixed polarizer with expansion" render "$tmpdir/wf.json" -o "$tmpdir/wf.png" "${small[@]}" \
   --method expansion
 expect_ok "fig. 9c with a world-fixed analyzer at 45 degrees" render examples/fig9c_analyzer45.json \
@@ -87,7 +87,7 @@ expect_ok "render 2 threads" render "$good" -o "$tmpdir/b.png" --threads 2 --qui
 expect_ok "diff identical" diff "$tmpdir/a.png" "$tmpdir/b.png" -o "$tmpdir/d.png" --json
 expect_grep "identical: max 0" '"max":[[:space:]]*0[,}]?$'
 [ -s "$tmpdir/d.png" ] || { echo "FAIL (no diff map)"; fails=$((fails + 1)); }
-expect_ok "render numeric" render "$good" -o "$tmpdir/n.png" --method numeric --samples 16 --quiet
+expect_ok "render numeric" render "$good" -o "$tmpdir/n.png" --method numeric --spectral-samples 16 --quiet
 expect_ok "diff analytic vs numeric" diff "$tmpdir/a.png" "$tmpdir/n.png"
 expect_grep "diff plain output" "95th percentile"
 expect_ok "render smaller" render "$good" -o "$tmpdir/s.png" "${small[@]}"
@@ -104,7 +104,7 @@ expect_ok "render antialias none" render "$good" -o "$tmpdir/p.png" "${small[@]}
 expect_grep "none in json" '"antialias":[[:space:]]*"none"'
 expect_ok "render supersample" render "$good" -o "$tmpdir/p.png" "${small[@]}" --supersample 2 --json
 expect_grep "supersample in json" '"supersample":[[:space:]]*2'
-expect_ok "numeric defaults to none" render "$good" -o "$tmpdir/p.png" "${small[@]}" --method numeric --samples 8
+expect_ok "numeric defaults to none" render "$good" -o "$tmpdir/p.png" "${small[@]}" --method numeric --spectral-samples 8
 expect_error "prefilter with numeric" render "$good" -o "$tmpdir/p.png" "${small[@]}" --method numeric --antialias prefilter
 expect_error "bad antialias" render "$good" -o "$tmpdir/p.png" "${small[@]}" --antialias box
 expect_error "supersample 0" render "$good" -o "$tmpdir/p.png" "${small[@]}" --supersample 0

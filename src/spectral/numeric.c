@@ -1,10 +1,14 @@
 /* Numeric spectral integration of the closed-form Jones matrices (paper §6: "numeric" with N
- * samples and the ground truth with 16384): N midpoint samples, uniform in wavelength. */
+ * samples and the ground truth with 16384): N midpoint samples, uniform in wavelength. The
+ * Jones matrices come a block of wavelengths at a time (numeric_jones.c), transmission and
+ * reflection sharing each wavelength's phase factors and (I - D)^{-1}; the sums run over the
+ * wavelengths in ascending order, as one wavelength at a time would. */
 #include <complex.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "spectral/numeric_jones.h"
 #include "spectral/spectral_internal.h"
 
 biref_status biref_numeric_plan_create(const biref_spectral *sp, int samples, biref_numeric_plan **out)
@@ -17,7 +21,8 @@ biref_status biref_numeric_plan_create(const biref_spectral *sp, int samples, bi
     p->samples = samples;
     p->lambda = malloc((size_t)samples * sizeof *p->lambda);
     p->weight = malloc((size_t)samples * sizeof *p->weight);
-    if (!p->lambda || !p->weight) {
+    p->k = malloc((size_t)samples * sizeof *p->k);
+    if (!p->lambda || !p->weight || !p->k) {
         biref_numeric_plan_destroy(p);
         return BIREF_ERR_NOMEM;
     }
@@ -25,6 +30,7 @@ biref_status biref_numeric_plan_create(const biref_spectral *sp, int samples, bi
     double sum[3] = {0, 0, 0};
     for (int i = 0; i < samples; i++) {
         p->lambda[i] = lmin + (i + 0.5) * dl;
+        p->k[i] = 2.0 * M_PI / p->lambda[i]; /* as biref_slab_jones_at computes it */
         biref_cmf_band_eval(&sp->band, p->lambda[i], p->weight[i]);
         for (int j = 0; j < 3; j++) sum[j] += p->weight[i][j];
     }
@@ -41,6 +47,7 @@ void biref_numeric_plan_destroy(biref_numeric_plan *plan)
     if (!plan) return;
     free(plan->lambda);
     free(plan->weight);
+    free(plan->k);
     free(plan);
 }
 
@@ -49,19 +56,22 @@ int biref_numeric_plan_samples(const biref_numeric_plan *plan) { return plan->sa
 void biref_spectrum_numeric(const biref_numeric_plan *plan, const biref_slab_state *st, biref_spectrum *out)
 {
     memset(out, 0, sizeof *out);
-    for (int n = 0; n < plan->samples; n++) {
-        biref_jones T, R;
-        biref_slab_jones_at(st, plan->lambda[n], &T, &R);
-        double PT[2][2], PR[2][2];
-        biref_jones_intensity(&T, PT);
-        biref_jones_intensity(&R, PR);
-        const double *w = plan->weight[n];
-        for (int i = 0; i < 2; i++)
-            for (int o = 0; o < 2; o++)
-                for (int j = 0; j < 3; j++) {
-                    out->T[i][o][j] += w[j] * PT[i][o];
-                    out->R[i][o][j] += w[j] * PR[i][o];
+    biref_jones_block T, R;
+    for (int n0 = 0; n0 < plan->samples; n0 += BIREF_NUMERIC_BLOCK) {
+        const int nb = plan->samples - n0 < BIREF_NUMERIC_BLOCK ? plan->samples - n0 : BIREF_NUMERIC_BLOCK;
+        biref_numeric_jones_block(st, plan->k + n0, nb, &T, &R);
+        for (int l = 0; l < nb; l++) {
+            const double *w = plan->weight[n0 + l];
+            for (int i = 0; i < 2; i++)
+                for (int o = 0; o < 2; o++) {
+                    const double PT = T.re[i][o][l] * T.re[i][o][l] + T.im[i][o][l] * T.im[i][o][l];
+                    const double PR = R.re[i][o][l] * R.re[i][o][l] + R.im[i][o][l] * R.im[i][o][l];
+                    for (int j = 0; j < 3; j++) {
+                        out->T[i][o][j] += w[j] * PT;
+                        out->R[i][o][j] += w[j] * PR;
+                    }
                 }
+        }
     }
 }
 
@@ -69,21 +79,25 @@ void biref_spectrum_numeric_polarized(const biref_numeric_plan *plan, const bire
                                       const double complex C[2][2], const double complex P[2][2], double xyz[3])
 {
     xyz[0] = xyz[1] = xyz[2] = 0.0;
-    for (int n = 0; n < plan->samples; n++) {
-        biref_jones J;
+    biref_jones_block B;
+    for (int n0 = 0; n0 < plan->samples; n0 += BIREF_NUMERIC_BLOCK) {
+        const int nb = plan->samples - n0 < BIREF_NUMERIC_BLOCK ? plan->samples - n0 : BIREF_NUMERIC_BLOCK;
         if (which == BIREF_REFLECTION)
-            biref_slab_jones_at(st, plan->lambda[n], NULL, &J);
+            biref_numeric_jones_block(st, plan->k + n0, nb, NULL, &B);
         else
-            biref_slab_jones_at(st, plan->lambda[n], &J, NULL);
-        double complex M[2][2];
-        for (int i = 0; i < 2; i++)
-            for (int k = 0; k < 2; k++)
-                M[i][k] = P ? J.m[i][0] * P[0][k] + J.m[i][1] * P[1][k] : J.m[i][k];
-        /* <|e M|^2> over the input ensemble = sum_{i,j} C[i][j] sum_k M[i][k] conj(M[j][k]). */
-        double I_det = 0.0;
-        for (int i = 0; i < 2; i++)
-            for (int j = 0; j < 2; j++)
-                for (int k = 0; k < 2; k++) I_det += creal(C[i][j] * M[i][k] * conj(M[j][k]));
-        for (int b = 0; b < 3; b++) xyz[b] += plan->weight[n][b] * I_det;
+            biref_numeric_jones_block(st, plan->k + n0, nb, &B, NULL);
+        for (int l = 0; l < nb; l++) {
+            double complex J[2][2], M[2][2];
+            for (int i = 0; i < 2; i++)
+                for (int k = 0; k < 2; k++) J[i][k] = CMPLX(B.re[i][k][l], B.im[i][k][l]);
+            for (int i = 0; i < 2; i++)
+                for (int k = 0; k < 2; k++) M[i][k] = P ? J[i][0] * P[0][k] + J[i][1] * P[1][k] : J[i][k];
+            /* <|e M|^2> over the input ensemble = sum_{i,j} C[i][j] sum_k M[i][k] conj(M[j][k]). */
+            double I_det = 0.0;
+            for (int i = 0; i < 2; i++)
+                for (int j = 0; j < 2; j++)
+                    for (int k = 0; k < 2; k++) I_det += creal(C[i][j] * M[i][k] * conj(M[j][k]));
+            for (int b = 0; b < 3; b++) xyz[b] += plan->weight[n0 + l][b] * I_det;
+        }
     }
 }

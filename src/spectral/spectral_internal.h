@@ -86,6 +86,7 @@ static inline void spectral_table_eval(const struct biref_spectral *sp, const do
 struct biref_numeric_plan {
     int samples;
     double *lambda;
+    double *k;           /* 2 pi / lambda */
     double (*weight)[3]; /* sum over samples = 1 per band */
 };
 

@@ -48,6 +48,20 @@ static void random_values_encode_as_reference(void)
     CHECK(bad == 0);
 }
 
+/* Where the search starts: every bin's lower end and the doubles either side of it. */
+static void bin_edges_encode_as_reference(void)
+{
+    biref_srgb8_encoder e;
+    biref_srgb8_encoder_init(&e);
+    int bad = 0;
+    for (int b = 0; b <= BIREF_SRGB8_BINS; b++) {
+        double v = (double)b / BIREF_SRGB8_BINS;
+        bad += mismatch(&e, v) + mismatch(&e, nextafter(v, 0.0)) + mismatch(&e, nextafter(v, 2.0));
+    }
+    printf("bin edges and their neighbours: %d mismatches\n", bad);
+    CHECK(bad == 0);
+}
+
 static void special_values_encode_as_reference(void)
 {
     biref_srgb8_encoder e;
@@ -89,6 +103,7 @@ int main(int argc, char **argv)
     static const test_case cases[] = {
         {"thresholds_increase_and_encode_as_reference", thresholds_increase_and_encode_as_reference},
         {"random_values_encode_as_reference", random_values_encode_as_reference},
+        {"bin_edges_encode_as_reference", bin_edges_encode_as_reference},
         {"special_values_encode_as_reference", special_values_encode_as_reference},
         {"image_conversion_equals_per_pixel", image_conversion_equals_per_pixel},
     };

@@ -44,4 +44,12 @@ void biref_srgb8_encoder_init(biref_srgb8_encoder *e)
         }
         e->t[k - 1] = double_of(hi);
     }
+    /* The codes of the bins' lower ends, by the thresholds themselves (binary search). */
+    for (int b = 0; b < BIREF_SRGB8_BINS; b++) {
+        const double v = (double)b / BIREF_SRGB8_BINS;
+        int k = 0;
+        for (int step = 128; step; step >>= 1)
+            if (k + step <= 255 && v >= e->t[k + step - 1]) k += step;
+        e->start[b] = (unsigned char)k;
+    }
 }

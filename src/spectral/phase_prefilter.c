@@ -12,6 +12,7 @@
 #include <stdlib.h>
 
 #include "spectral/spectral_internal.h"
+#include "spectral/table_build.h"
 
 /* Same quadrature as the point table (midpoint rule, relative error (phi' h)^2 / 24). */
 #define BUILD_DLAMBDA_NM 0.05
@@ -70,19 +71,8 @@ static biref_status build_table(const biref_spectral *sp, double *table)
         const int m0 = b * BUILD_BLOCK_NODES;
         const int m1 = m0 + BUILD_BLOCK_NODES < sp->nodes ? m0 + BUILD_BLOCK_NODES : sp->nodes;
         for (int i = 0; i < n; i++) {
-            double complex z = z0[(size_t)i * blocks + b];
-            for (int m = m0; m < m1; m++) {
-                double *row = table + (size_t)m * 12;
-                double complex zd = smp[i].dz * z;
-                for (int j = 0; j < 3; j++) {
-                    double w = smp[i].w[j];
-                    row[4 * j + 0] += w * creal(z);
-                    row[4 * j + 1] += w * cimag(z);
-                    row[4 * j + 2] += w * creal(zd);
-                    row[4 * j + 3] += w * cimag(zd);
-                }
-                z *= smp[i].rot;
-            }
+            (void)biref_table_accumulate(table + (size_t)m0 * 12, m1 - m0, smp[i].w, z0[(size_t)i * blocks + b],
+                                         smp[i].rot, smp[i].dz);
         }
     }
     free(smp);

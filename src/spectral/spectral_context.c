@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "spectral/spectral_internal.h"
+#include "spectral/table_build.h"
 
 /* Table resolution. Hermite interpolation of the demodulated F has error ~ (2 pi B h)^4 / 384
  * with B = half the band width in 1/lambda (6e-4 / nm for 380-700 nm, at most 8e-4 / nm for the
@@ -79,18 +80,7 @@ static biref_status build_table(biref_spectral *sp)
             double complex rot = cexp(2.0 * M_PI * I * f * sp->step);
             double complex z = cexp(2.0 * M_PI * I * f * (m0 * sp->step));
             double complex dz = 2.0 * M_PI * I * f; /* d/dD of e^{2 pi i f D} is dz times it */
-            for (int m = m0; m < m1; m++) {
-                double *row = sp->table + (size_t)m * 12;
-                double complex zd = dz * z;
-                for (int j = 0; j < 3; j++) {
-                    double w = lam[i][j];
-                    row[4 * j + 0] += w * creal(z);
-                    row[4 * j + 1] += w * cimag(z);
-                    row[4 * j + 2] += w * creal(zd);
-                    row[4 * j + 3] += w * cimag(zd);
-                }
-                z *= rot;
-            }
+            (void)biref_table_accumulate(sp->table + (size_t)m0 * 12, m1 - m0, lam[i], z, rot, dz);
         }
     }
     free(lam);

@@ -39,7 +39,7 @@ typedef struct {
  * wavelength is walked first (in parallel over wavelengths) to record z at every block's
  * first node, then the blocks are summed in parallel: the same products in the same order as
  * one serial pass, so the table is the same to the bit for any number of threads. */
-static biref_status build_table(const biref_spectral *sp, double *table)
+static biref_status build_prefilter_table(const biref_spectral *sp, double *table)
 {
     const double lmin = sp->cfg.lambda_min_nm, lmax = sp->cfg.lambda_max_nm;
     const int n = (int)ceil((lmax - lmin) / BUILD_DLAMBDA_NM);
@@ -92,7 +92,7 @@ biref_status biref_phase_prefilter_create(const biref_spectral *sp, biref_phase_
         free(pf);
         return BIREF_ERR_NOMEM;
     }
-    if (build_table(sp, pf->table) != BIREF_OK) {
+    if (build_prefilter_table(sp, pf->table) != BIREF_OK) {
         biref_phase_prefilter_destroy(pf);
         return BIREF_ERR_NOMEM;
     }

@@ -68,6 +68,16 @@ static double round_trip_norm(const biref_slab_state *st, double k)
     return worst;
 }
 
+int biref_coherent_real_paths(const biref_slab_state *st)
+{
+    /* With real optical paths no leg is evanescent (no coupling test) and every round trip
+     * propagates: only the shortest round trip decides, as in biref_coherent_plan. */
+    double rt_min = INFINITY;
+    for (int x = 0; x < 2; x++)
+        for (int y = 0; y < 2; y++) rt_min = fmin(rt_min, fabs(creal(st->opl_down[x] + st->opl_up[y])));
+    return rt_min < COHERENT_ROUND_TRIP_NM;
+}
+
 const biref_numeric_plan *biref_coherent_plan(const biref_spectral *sp, const biref_slab_state *st)
 {
     const double k_lo = 2.0 * M_PI / sp->cfg.lambda_max_nm;

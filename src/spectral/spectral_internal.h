@@ -121,5 +121,8 @@ biref_status biref_expansion_series_polarized(const biref_spectral *sp, const bi
  * (thin slabs, evanescent legs coupling the faces; src/spectral/coherent.c), or NULL when it
  * does. */
 const biref_numeric_plan *biref_coherent_plan(const biref_spectral *sp, const biref_slab_state *st);
+/* For a state whose optical paths are all real: non-zero exactly when biref_coherent_plan
+ * returns a plan (the slab is in the coherent regime), without computing the plan. */
+int biref_coherent_real_paths(const biref_slab_state *st);
 
 #endif

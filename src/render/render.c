@@ -8,7 +8,6 @@
 #include <string.h>
 
 #include "error.h"
-#include "optics/slab_internal.h"
 #include "render/render_internal.h"
 #include "spectral/integrator_internal.h"
 #include "render/vec3.h"
@@ -197,7 +196,7 @@ static void store_pixel(const biref_renderer *r, const double c[3], float *px, l
 #define HIT_PACKET 32
 
 typedef struct {
-    biref_slab_state st[HIT_PACKET];
+    biref_slab_hit hit[HIT_PACKET];
     biref_hit_frames fr[HIT_PACKET];
     double hp[HIT_PACKET][3], dir[HIT_PACKET][3], T[HIT_PACKET][3], R[HIT_PACKET][3];
     biref_status status[HIT_PACKET];
@@ -207,7 +206,7 @@ typedef struct {
 static void flush_hits(const biref_renderer *r, hit_packet *p, float *row, long *fallbacks, long *nonfinite)
 {
     if (!p->n) return;
-    biref_integrate_hits(r->integrator, p->st, (size_t)p->n, &r->light, p->T, p->R, p->status);
+    biref_integrate_hits(r->integrator, p->hit, (size_t)p->n, &r->light, p->T, p->R, p->status);
     for (int k = 0; k < p->n; k++) {
         double c[3];
         if (p->status[k] != BIREF_OK) {
@@ -244,14 +243,7 @@ static void render_row_packets(const biref_renderer *r, int y, float *row, long 
         v3_axpy(r->cam.origin, t, dir, p.hp[k]);
         memcpy(p.dir[k], dir, sizeof dir);
         /* The slab's constants were checked when the renderer accepted them (shade.c, shade_hit). */
-        if (biref_slab_prepare_trusted(&fr->slab, fr->theta, &p.st[k]) != BIREF_OK) {
-            double tT[3], tR[3];
-            biref_render_failed_hit(r, fr, tT, tR);
-            ++*fallbacks;
-            biref_render_hit_colour(r, p.hp[k], dir, fr, tT, tR, c);
-            store_pixel(r, c, row + 3 * x, nonfinite);
-            continue;
-        }
+        p.hit[k] = (biref_slab_hit){fr->slab, fr->theta};
         p.x[k] = x;
         if (++p.n == HIT_PACKET) flush_hits(r, &p, row, fallbacks, nonfinite);
     }

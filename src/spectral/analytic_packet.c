@@ -70,3 +70,13 @@ int biref_packet_eligible(const biref_spectral *sp, const biref_slab_state *st)
     /* The flipped state has the same round trips (down and up legs swapped), so the same answer. */
     return !biref_coherent_real_paths(st);
 }
+
+biref_packet_hits_kernel biref_simd_hits_kernel(biref_simd_isa isa)
+{
+    switch (isa) {
+    case BIREF_SIMD_BASELINE: return biref_packet_hits_baseline;
+    case BIREF_SIMD_AVX2: return biref_packet_hits_avx2;
+    case BIREF_SIMD_AVX512: return biref_packet_hits_avx512;
+    default: return NULL;
+    }
+}

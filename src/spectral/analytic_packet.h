@@ -33,6 +33,30 @@ typedef struct {
 typedef void (*biref_packet_kernel)(const biref_spectral *sp, const double w_in[2], const double mask[2],
                                     const biref_packet_job *jobs, size_t n, double (*xyz)[3]);
 
+/* One renderer hit: a checked slab (unit axis) seen at incidence parameter K = eta_i sin theta.
+ * The kernel prepares it (modes, both interface solves, paths) in lanes as well. */
+typedef struct {
+    double eta_o, eta_e, axis[3], thickness_nm, eta_i, K;
+} biref_packet_hit;
+
+/* T[k] and R[k] as biref_integrate_hits gives them (transmission of the hit's state, reflection
+ * of its flip), up to rounding, for the hits whose scalar[k] is 0; scalar[k] = 1 marks a hit the
+ * kernel cannot take (an evanescent mode, the optic-axis degeneracy, a near-singular interface
+ * system, the coherent regime): its T and R are undefined and it goes to the scalar path. */
+typedef void (*biref_packet_hits_kernel)(const biref_spectral *sp, const double w_in[2], const double mask[2],
+                                         const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
+                                         unsigned char *scalar);
+
+void biref_packet_hits_baseline(const biref_spectral *sp, const double w_in[2], const double mask[2],
+                                const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
+                                unsigned char *scalar);
+void biref_packet_hits_avx2(const biref_spectral *sp, const double w_in[2], const double mask[2],
+                            const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
+                            unsigned char *scalar);
+void biref_packet_hits_avx512(const biref_spectral *sp, const double w_in[2], const double mask[2],
+                              const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
+                              unsigned char *scalar);
+
 void biref_packet_analytic_baseline(const biref_spectral *sp, const double w_in[2], const double mask[2],
                                     const biref_packet_job *jobs, size_t n, double (*xyz)[3]);
 void biref_packet_analytic_avx2(const biref_spectral *sp, const double w_in[2], const double mask[2],
@@ -58,6 +82,7 @@ int biref_simd_isa_supported(biref_simd_isa isa);
 biref_simd_isa biref_simd_isa_choose(void);
 /* The kernel of a path (NULL for BIREF_SIMD_SCALAR). */
 biref_packet_kernel biref_simd_kernel(biref_simd_isa isa);
+biref_packet_hits_kernel biref_simd_hits_kernel(biref_simd_isa isa);
 
 /* Can the packet kernel take this state? Real coefficients and paths (no evanescent mode) and
  * not in the coherent regime (biref_coherent_plan(sp, st) == NULL). The same for the flipped

@@ -3,4 +3,5 @@
  * (analytic_packet.c). */
 #define PACKET_W 8
 #define PACKET_FN biref_packet_analytic_avx512
+#define PACKET_HITS_FN biref_packet_hits_avx512
 #include "spectral/analytic_packet_kernel.inc"

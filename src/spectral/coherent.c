@@ -35,7 +35,7 @@
  * 0-90 deg) eq. 26 is off by up to 0.33 in intensity (dE00 14-41) below a 2 um round trip and
  * 0.25 (dE00 10) below 5 um; the quadrature costs ~0.14 us per sample, a few hundred samples
  * here (docs/ACCURACY.md). */
-#define COHERENT_ROUND_TRIP_NM 10000.0
+#define COHERENT_ROUND_TRIP_NM BIREF_COHERENT_ROUND_TRIP_NM
 /* Orders resolved by the quadrature: up to where the round-trip amplitude has fallen below this. */
 #define ORDER_AMPLITUDE_FLOOR 1e-3
 /* Midpoint samples per local period of the highest significant frequency at the short end of the

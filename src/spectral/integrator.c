@@ -29,6 +29,7 @@ struct biref_integrator {
     batch_worker batch;
     biref_simd_isa isa;          /* analytic: the packet kernel's instruction set, picked at creation */
     biref_packet_kernel packet;  /* NULL: no packets */
+    biref_packet_hits_kernel hits;
 };
 
 void biref_integrator_options_default(biref_integrator_options *o)
@@ -121,6 +122,7 @@ biref_status biref_integrator_create(const biref_spectral *sp, const biref_integ
         it->side = side_analytic;
         it->isa = biref_simd_isa_choose();
         it->packet = biref_simd_kernel(it->isa);
+        it->hits = biref_simd_hits_kernel(it->isa);
         if (it->packet) it->batch = packet_batch;
         break;
     case BIREF_METHOD_EXPANSION: it->side = side_expansion; break;
@@ -293,28 +295,37 @@ static biref_status scalar_hit(const biref_integrator *it, const biref_slab_stat
     return s;
 }
 
-void biref_integrate_hits(const biref_integrator *it, const biref_slab_state *states, size_t n,
-                          const biref_light *light, double (*T)[3], double (*R)[3], biref_status *status)
+/* One hit the scalar way. */
+static biref_status scalar_slab_hit(const biref_integrator *it, const biref_slab_hit *h, const biref_light *light,
+                                    double T[3], double R[3])
 {
-    const int packets = it->packet && light->sp_model;
-    packet_chunk c;
+    biref_slab_state st;
+    biref_status s = biref_slab_prepare_trusted(&h->slab, h->theta, &st);
+    return s != BIREF_OK ? s : scalar_hit(it, &st, light, T, R);
+}
+
+void biref_integrate_hits(const biref_integrator *it, const biref_slab_hit *hits, size_t n, const biref_light *light,
+                          double (*T)[3], double (*R)[3], biref_status *status)
+{
+    const int packets = it->hits && light->sp_model;
+    biref_packet_hit ph[PACKET_CHUNK];
+    unsigned char scalar[PACKET_CHUNK];
     for (size_t k0 = 0; k0 < n; k0 += PACKET_CHUNK) {
-        c.n = 0;
-        for (size_t k = k0; k < n && k < k0 + PACKET_CHUNK; k++) {
-            if (packets && biref_packet_eligible(it->sp, &states[k])) {
-                chunk_add(&c, &states[k], 0, BIREF_TRANSMISSION, k);
-                chunk_add(&c, &states[k], 1, BIREF_REFLECTION, k);
-                status[k] = BIREF_OK;
-            } else {
-                status[k] = scalar_hit(it, &states[k], light, T[k], R[k]);
+        const size_t m = n - k0 < PACKET_CHUNK ? n - k0 : PACKET_CHUNK;
+        if (packets) {
+            for (size_t k = 0; k < m; k++) {
+                const biref_slab *s = &hits[k0 + k].slab;
+                ph[k] = (biref_packet_hit){s->eta_o, s->eta_e, {0, 0, 0}, s->thickness_nm, s->eta_i,
+                                           s->eta_i * sin(hits[k0 + k].theta)}; /* eq. 1, as slab.c */
+                biref_axis_unit_unchecked(s->axis, ph[k].axis);
             }
+            it->hits(it->sp, light->w_in, light->mask, ph, m, T + k0, R + k0, scalar);
         }
-        if (!c.n) continue;
-        it->packet(it->sp, light->w_in, light->mask, c.jobs, c.n, c.xyz);
-        for (size_t j = 0; j < c.n; j++) {
-            size_t k = c.owner[j];
-            biref_status s = packet_result(c.xyz[j], c.jobs[j].which ? R[k] : T[k]);
-            if (status[k] == BIREF_OK) status[k] = s;
+        for (size_t k = k0; k < k0 + m; k++) {
+            if (!packets || scalar[k - k0])
+                status[k] = scalar_slab_hit(it, &hits[k], light, T[k], R[k]);
+            else
+                status[k] = finite3(T[k]) && finite3(R[k]) ? BIREF_OK : BIREF_ERR_ILLCOND;
         }
     }
 }

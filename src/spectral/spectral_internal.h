@@ -8,6 +8,9 @@
 #include "biref/spectral.h"
 
 #define BIREF_COHERENT_PLANS 9
+/* Round trips shorter than this (nm of optical path) put a slab in the coherent regime
+ * (coherent.c, where the value is explained). */
+#define BIREF_COHERENT_ROUND_TRIP_NM 10000.0
 
 struct biref_spectral {
     biref_spectral_config cfg;

@@ -60,9 +60,10 @@ static void help(void)
            "                         axis per ring of the near-axis sets (default 16)\n"
            "  --reference-samples N  samples of the reference integration (default %d)\n"
            "  --samples-ref N        the same (older name)\n"
-           "  --samples-check N      denser integration to test the reference, 0 = off (default 4x the\n"
+           "  --check-samples N      denser integration to test the reference, 0 = off (default 4x the\n"
            "                         reference; base materials, every --check-step-deg of the grid, the\n"
            "                         largest angle, and every %dth near-axis sample)\n"
+           "  --samples-check N      the same as --check-samples (older name)\n"
            "  --check-step-deg S     angle step of that test (default 5)\n"
            "  --cost                 also measure the cost per shading sample of every method, on one\n"
            "                         thread, before the sweep, on the grid's states up to 85 deg (adds\n"
@@ -79,7 +80,10 @@ static void help(void)
            "  --cmf C                cie1931 (default) or wyman2013\n"
            "  --range-nm MIN,MAX     integration band (default 380,700)\n"
            "  --threads T            OpenMP threads (default: all cores)\n"
-           "  --progress             progress on stderr also when it is not a terminal\n"
+           "  --progress             progress from the start, also when stderr is not a terminal\n"
+           "                         (default: a bar on a terminal, otherwise a line every few seconds\n"
+           "                         once the job has run 2 s)\n"
+           "  -q, --quiet            no progress on stderr\n"
            "  --csv FILE             per-angle statistics of every method and material\n"
            "  --markdown FILE        write the tables to FILE\n"
            "  --json                 machine-readable output on stdout\n"
@@ -121,7 +125,8 @@ static int parse(int argc, char **argv, acc_options *o)
                                              {"azimuths", required_argument, 0, OPT_AZIMUTHS},
                                              {"reference-samples", required_argument, 0, OPT_SAMPLES_REF},
                                              {"samples-ref", required_argument, 0, OPT_SAMPLES_REF},
-                                             {"samples-check", required_argument, 0, OPT_SAMPLES_CHECK},
+                                             {"check-samples", required_argument, 0, OPT_SAMPLES_CHECK},
+                                             {"samples-check", required_argument, 0, OPT_SAMPLES_CHECK}, /* old name */
                                              {"check-step-deg", required_argument, 0, OPT_CHECK_STEP},
                                              {"cost", no_argument, 0, OPT_COST},
                                              {"cost-only", no_argument, 0, OPT_COST_ONLY},
@@ -173,7 +178,7 @@ static int parse(int argc, char **argv, acc_options *o)
             o->samples_ref = (int)v;
             break;
         case OPT_SAMPLES_CHECK:
-            if (cli_parse_int(CMD, "--samples-check", optarg, 0, MAX_SAMPLES, &v)) return -1;
+            if (cli_parse_int(CMD, "--check-samples", optarg, 0, MAX_SAMPLES, &v)) return -1;
             o->samples_check = (int)v;
             break;
         case OPT_COST: o->cost = 1; break;

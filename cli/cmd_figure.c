@@ -36,7 +36,7 @@ static void help(void)
            "           to alias against a 32x32 super-sampled reference, with dE00 maps and costs\n"
            "  all      everything above\n\n"
            "Options:\n"
-           "  -o, --out DIR        output directory (created if missing; its parent must exist)\n"
+           "  -o, --output DIR     output directory (created if missing; its parent must exist)\n"
            "  --quick              fewer samples and smaller images (seconds instead of minutes)\n"
            "  --threads T          OpenMP threads (default: all cores)\n"
            "  --scenes DIR         where fig9a/b/c.json are (default: examples, from $BIREF_DATA_DIR\n"
@@ -87,7 +87,9 @@ static double render_rows(const fig_ctx *c, const biref_scene *sc, const method_
     if (biref_renderer_create(sc, &opt, &r, msg, sizeof msg) != BIREF_OK)
         return cli_error(FIG_CMD, "%s: %s", ms->name, msg), -1.0;
     biref_progress_bar bar;
-    biref_progress_bar_init(&bar, stderr, isatty(2), label);
+    char what[48];
+    snprintf(what, sizeof what, "figure %s", label);
+    biref_progress_bar_init(&bar, stderr, 1, what);
     double t0 = biref_wall_seconds();
     biref_status s = biref_renderer_render(r, y0, sc->camera.height, step, xyz, biref_progress_bar_update, &bar, NULL);
     double t = biref_wall_seconds() - t0;
@@ -330,7 +332,8 @@ enum { OPT_QUICK = 1000, OPT_THREADS, OPT_SCENES };
 
 int cmd_figure(int argc, char **argv)
 {
-    static const struct option longopts[] = {{"out", required_argument, 0, 'o'},
+    static const struct option longopts[] = {{"output", required_argument, 0, 'o'},
+                                             {"out", required_argument, 0, 'o'}, /* old name */
                                              {"quick", no_argument, 0, OPT_QUICK},
                                              {"threads", required_argument, 0, OPT_THREADS},
                                              {"scenes", required_argument, 0, OPT_SCENES},

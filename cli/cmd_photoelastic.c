@@ -9,6 +9,7 @@
 #include "cli_render.h"
 #include "commands.h"
 #include "json_out.h"
+#include "cli_values.h"
 #include "photoelastic_ext.h"
 
 static const char *const CMD = "photoelastic";
@@ -45,15 +46,16 @@ static void help(void)
            "Polariscope and light:\n"
            "  --polariscope P      plane or circular (default circular)\n"
            "  --field F            dark (crossed, default) or light (parallel)\n"
-           "  --polarizer-deg A    polarizer angle from x towards y, counter-clockwise (default 0 = s);\n"
-           "                       an ideal circular polariscope does not depend on it\n"
+           "  --polarizer linear:DEG  polarizer angle from x towards y, counter-clockwise (default\n"
+           "                       linear:0 = s); an ideal circular polariscope does not depend on it\n"
            "  --light L            white (illuminant E, CIE 1931, default) or mono\n"
            "  --lambda-nm L        wavelength for mono (default 589); fringe orders use it too\n"
            "  --tint               mono: tint the grey levels with the colour of that wavelength\n\n"
            "Output:\n"
            "  -o, --output FILE    write an sRGB PNG\n"
            "  --size N             pixels along the longer side of the picture (default 512)\n"
-           "  --view-mm x0,x1,y0,y1  show this window of the plate instead of the whole part\n"
+           "  --window-mm x0,y0,x1,y1  show the window with opposite corners (x0, y0) and (x1, y1) of\n"
+           "                       the plate instead of the whole part\n"
            "  --tilt-deg A         view the plate A degrees off its normal (turned about its x axis;\n"
            "                       0-80, default 0). Uses the general slab path (about 15x slower) and\n"
            "                       the uniaxial approximation, exact only at 0 or where one principal\n"
@@ -64,14 +66,14 @@ static void help(void)
            "  --profile x0,y0,x1,y1  print intensity, retardation (nm) and fringe order N = h C (s1 - s2) / lambda\n"
            "                       along a line in mm (white light: N at 550 nm; tilted: the model's\n"
            "                       retardation along the oblique path)\n"
-           "  --samples N          points on the profile (default 201)\n"
+           "  --profile-points N   points on the profile (default 201)\n"
            "  --json               machine-readable output\n"
            "  -h, --help           this help\n\n");
     pe_ext_help();
     printf("Exit status: 0 success, 1 runtime failure (e.g. unwritable output), 2 bad usage or input.\n\n"
            "Examples:\n"
            "  biref photoelastic --preset disk --light mono --lambda-nm 589 -o disk.png\n"
-           "  biref photoelastic --preset hole --polariscope plane --polarizer-deg 0 -o hole.png\n"
+           "  biref photoelastic --preset hole --polariscope plane --polarizer linear:0 -o hole.png\n"
            "  biref photoelastic --preset disk --profile 0,-25,0,25 --json\n"
            "  biref photoelastic --stress-nodes part.csv --columns sxx=S11,syy=S22,txy=S12 --map fringe-order -o N.pfm\n");
 }
@@ -107,6 +109,8 @@ enum {
     OPT_SAMPLES,
     OPT_JSON,
     OPT_VIEW,
+    OPT_WINDOW,
+    OPT_POLARIZER_DEG,
     OPT_TILT,
     OPT_END
 };
@@ -185,7 +189,8 @@ int cmd_photoelastic(int argc, char **argv)
                                              {"eta-i", required_argument, 0, OPT_ETA_I_PE},
                                              {"polariscope", required_argument, 0, OPT_POLARISCOPE},
                                              {"field", required_argument, 0, OPT_FIELD},
-                                             {"polarizer-deg", required_argument, 0, OPT_POLARIZER},
+                                             {"polarizer", required_argument, 0, OPT_POLARIZER},
+                                             {"polarizer-deg", required_argument, 0, OPT_POLARIZER_DEG}, /* old */
                                              {"light", required_argument, 0, OPT_LIGHT},
                                              {"lambda-nm", required_argument, 0, OPT_LAMBDA},
                                              {"tint", no_argument, 0, OPT_TINT},
@@ -195,9 +200,11 @@ int cmd_photoelastic(int argc, char **argv)
                                              {"exposure", required_argument, 0, OPT_EXPOSURE},
                                              {"threads", required_argument, 0, OPT_THREADS},
                                              {"profile", required_argument, 0, OPT_PROFILE},
-                                             {"samples", required_argument, 0, OPT_SAMPLES},
+                                             {"profile-points", required_argument, 0, OPT_SAMPLES},
+                                             {"samples", required_argument, 0, OPT_SAMPLES}, /* old name */
                                              {"json", no_argument, 0, OPT_JSON},
-                                             {"view-mm", required_argument, 0, OPT_VIEW},
+                                             {"window-mm", required_argument, 0, OPT_WINDOW},
+                                             {"view-mm", required_argument, 0, OPT_VIEW}, /* old, x0,x1,y0,y1 */
                                              {"tilt-deg", required_argument, 0, OPT_TILT},
                                              {"help", no_argument, 0, 'h'},
                                              PE_EXT_LONG_OPTIONS,
@@ -302,6 +309,9 @@ int cmd_photoelastic(int argc, char **argv)
                 return cli_error(CMD, "--field: expected dark or light, got '%s'", optarg), CLI_EXIT_USAGE;
             break;
         case OPT_POLARIZER:
+            if (cli_parse_linear_polarizer(CMD, "--polarizer", optarg, &polarizer_deg)) return CLI_EXIT_USAGE;
+            break;
+        case OPT_POLARIZER_DEG:
             if (cli_parse_double(CMD, "--polarizer-deg", optarg, &polarizer_deg)) return CLI_EXIT_USAGE;
             break;
         case OPT_LIGHT:
@@ -338,7 +348,7 @@ int cmd_photoelastic(int argc, char **argv)
             have_profile = 1;
             break;
         case OPT_SAMPLES:
-            if (cli_parse_int(CMD, "--samples", optarg, 2, 100000, &samples)) return CLI_EXIT_USAGE;
+            if (cli_parse_int(CMD, "--profile-points", optarg, 2, 100000, &samples)) return CLI_EXIT_USAGE;
             have_samples = 1;
             break;
         case OPT_JSON: json = 1; break;
@@ -352,6 +362,10 @@ int cmd_photoelastic(int argc, char **argv)
             if (!(view[1] > view[0] && view[3] > view[2]))
                 return cli_error(CMD, "--view-mm: expected xmin,xmax,ymin,ymax with xmin < xmax and ymin < ymax"),
                        CLI_EXIT_USAGE;
+            have_view = 1;
+            break;
+        case OPT_WINDOW:
+            if (cli_parse_window(CMD, "--window-mm", optarg, view)) return CLI_EXIT_USAGE;
             have_view = 1;
             break;
         default: {
@@ -379,7 +393,7 @@ int cmd_photoelastic(int argc, char **argv)
         return cli_error(CMD, "--lambda-nm needs --light mono (white-light fringe orders are quoted at %.0f nm)",
                          WHITE_FRINGE_LAMBDA_NM),
                CLI_EXIT_USAGE;
-    if (have_samples && !have_profile) return cli_error(CMD, "--samples needs --profile"), CLI_EXIT_USAGE;
+    if (have_samples && !have_profile) return cli_error(CMD, "--profile-points needs --profile"), CLI_EXIT_USAGE;
 
     biref_pe_setup setup;
     memset(&setup, 0, sizeof setup);

@@ -32,7 +32,7 @@ static void help(void)
            "  --method M           analytic (default; paper eq. 26), numeric (N samples of eq. 17),\n"
            "                       ground-truth (numeric, 16384 samples) or expansion (exact integral\n"
            "                       of the path-group expansion, docs/PHYSICS.md §5)\n"
-           "  --samples N          samples of the numeric method, N >= 1 (default 64; numeric only)\n"
+           "  --spectral-samples N samples of the numeric method, N >= 1 (default 64; numeric only)\n"
            "  --order N            expansion: every pair of path groups up to order N interferes,\n"
            "                       the rest adds incoherently, 0-8 (default adaptive)\n"
            "  --tolerance E        expansion: adaptive orders' target relative error (default 1e-3;\n"
@@ -124,7 +124,7 @@ static int handle_option(spectrum_args *a, int c, char **argv)
             return cli_error(CMD, "--method: expected analytic, numeric, ground-truth or expansion, got '%s'", optarg),
                    -1;
         return 0;
-    case OPT_SAMPLES: return cli_parse_int(CMD, "--samples", optarg, 1, MAX_SAMPLES, &a->samples) ? -1 : 0;
+    case OPT_SAMPLES: return cli_parse_int(CMD, "--spectral-samples", optarg, 1, MAX_SAMPLES, &a->samples) ? -1 : 0;
     case OPT_CMF:
         if (biref_cmf_kind_from_name(optarg, &a->cfg.cmf) != BIREF_OK)
             return cli_error(CMD, "--cmf: expected cie1931 or wyman2013, got '%s'", optarg), -1;
@@ -174,10 +174,10 @@ static int handle_option(spectrum_args *a, int c, char **argv)
 /* Options that only make sense together. Returns 0 or -1 (one error line printed). */
 static int check_args(spectrum_args *a)
 {
-    /* --samples with another method would be silently ignored; refuse it so a typo in --method
+    /* --spectral-samples with another method would be silently ignored; refuse it so a typo in --method
      * cannot masquerade as a numeric run. */
     if (a->samples && a->method != BIREF_METHOD_NUMERIC)
-        return cli_error(CMD, "--samples: only valid with --method numeric (method is %s)",
+        return cli_error(CMD, "--spectral-samples: only valid with --method numeric (method is %s)",
                          biref_method_name(a->method)),
                -1;
     if ((a->have_order || a->have_tol) && a->method != BIREF_METHOD_EXPANSION)
@@ -217,7 +217,8 @@ static int parse(int argc, char **argv, spectrum_args *a)
                                              {"polarizer", required_argument, 0, OPT_POLARIZER},
                                              {"stokes", required_argument, 0, OPT_STOKES},
                                              {"method", required_argument, 0, OPT_METHOD},
-                                             {"samples", required_argument, 0, OPT_SAMPLES},
+                                             {"spectral-samples", required_argument, 0, OPT_SAMPLES},
+                                             {"samples", required_argument, 0, OPT_SAMPLES}, /* old name */
                                              {"cmf", required_argument, 0, OPT_CMF},
                                              {"range-nm", required_argument, 0, OPT_RANGE},
                                              {"polarization", required_argument, 0, OPT_POL},

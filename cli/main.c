@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cli_progress.h"
 #include "commands.h"
 
 static const struct {
@@ -25,7 +26,11 @@ static void usage(FILE *f)
     fprintf(f, "usage: biref COMMAND [OPTIONS]\n\nBirefringence-induced iridescence of uniaxial slabs.\n\nCommands:\n");
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
         fprintf(f, "  %-12s %s\n", commands[i].name, commands[i].summary);
-    fprintf(f, "\nRun 'biref COMMAND --help' for the options of a command.\n");
+    fprintf(f, "\nOptions:\n"
+               "  -h, --help     this list\n"
+               "  -V, --version  the version of biref\n"
+               "\nRun 'biref COMMAND --help' for the options of a command; the grammar they share is in\n"
+               "docs/CLI.md.\n");
 }
 
 int main(int argc, char **argv)
@@ -38,12 +43,16 @@ int main(int argc, char **argv)
         usage(stdout);
         return 0;
     }
-    if (!strcmp(argv[1], "--version")) {
+    if (!strcmp(argv[1], "--version") || !strcmp(argv[1], "-V")) {
         printf("biref 0.1.0\n");
         return 0;
     }
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-        if (!strcmp(argv[1], commands[i].name)) return commands[i].run(argc - 1, argv + 1);
+        if (!strcmp(argv[1], commands[i].name)) {
+            /* --progress and --quiet mean the same for every command: taken here, once. */
+            const int n = cli_progress_options(argc - 1, argv + 1);
+            return commands[i].run(n, argv + 1);
+        }
     fprintf(stderr, "biref: error: unknown command '%s' (see biref --help)\n", argv[1]);
     return 2;
 }

@@ -17,7 +17,8 @@ enum {
     OPT_PE_PFM,
     OPT_PE_PHASE_STEPS,
     OPT_PE_KEY,
-    OPT_PE_SCALE_BAR
+    OPT_PE_SCALE_BAR,
+    OPT_PE_FORMAT
 };
 
 #define PE_EXT_LONG_OPTIONS                                                                          \
@@ -25,7 +26,7 @@ enum {
         {"length-unit", required_argument, 0, OPT_PE_LENGTH_UNIT},                                   \
         {"stress-unit", required_argument, 0, OPT_PE_STRESS_UNIT},                                   \
         {"boundary", required_argument, 0, OPT_PE_BOUNDARY}, {"map", required_argument, 0, OPT_PE_MAP}, \
-        {"pfm", no_argument, 0, OPT_PE_PFM}, {"phase-steps", required_argument, 0, OPT_PE_PHASE_STEPS}, \
+        {"format", required_argument, 0, OPT_PE_FORMAT}, {"pfm", no_argument, 0, OPT_PE_PFM}, {"phase-steps", required_argument, 0, OPT_PE_PHASE_STEPS}, \
         {"key", no_argument, 0, OPT_PE_KEY}, {"scale-bar", no_argument, 0, OPT_PE_SCALE_BAR}
 
 typedef struct {

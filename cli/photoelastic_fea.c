@@ -37,7 +37,8 @@ void pe_ext_help(void)
            "  --map M              fringe-order, isoclinic (deg, direction of s1), retardation (nm),\n"
            "                       sigma1 or sigma2 (MPa) on the picture's pixel grid instead of a picture:\n"
            "                       FILE.pfm (float, NaN = no material) or FILE.csv (x_mm,y_mm,value)\n"
-           "  --pfm                write the picture as float PFM (linear sRGB; mono untinted: grey)\n"
+           "  --format png|pfm     the picture as 8-bit sRGB PNG (default) or float PFM (linear sRGB;\n"
+           "                       mono untinted: grey)\n"
            "  --phase-steps 4|6    the images of a phase-stepped circular polariscope (six-step method of\n"
            "                       Patterson & Wang; 4 = its first four), mono light: FILE-1.pfm ... or\n"
            "                       FILE-1.png ... (16-bit linear grey); recover the maps with\n"
@@ -104,6 +105,11 @@ int pe_ext_option(pe_ext *e, int code, const char *arg)
         return 1;
     }
     case OPT_PE_PFM: e->pfm = 1; return 1;
+    case OPT_PE_FORMAT:
+        if (strcmp(arg, "png") && strcmp(arg, "pfm"))
+            return cli_error(CMD, "--format: expected png or pfm, got '%s'", arg), -1;
+        e->pfm = !strcmp(arg, "pfm");
+        return 1;
     case OPT_PE_PHASE_STEPS:
         if (strcmp(arg, "4") && strcmp(arg, "6")) return cli_error(CMD, "--phase-steps: expected 4 or 6, got '%s'", arg), -1;
         e->phase_steps = atoi(arg);
@@ -122,8 +128,8 @@ int pe_ext_check(const pe_ext *e, int have_kind, int mono, int have_out, int hav
                          e->have_columns ? "--columns" : e->boundary_path ? "--boundary" : "--length-unit/--stress-unit"),
                -1;
     const int outputs = (e->map >= 0) + e->pfm + (e->phase_steps > 0);
-    if (outputs > 1) return cli_error(CMD, "give at most one of --map, --pfm and --phase-steps"), -1;
-    if (outputs && !have_out) return cli_error(CMD, "--map, --pfm and --phase-steps write to -o FILE"), -1;
+    if (outputs > 1) return cli_error(CMD, "give at most one of --map, --format pfm and --phase-steps"), -1;
+    if (outputs && !have_out) return cli_error(CMD, "--map, --format pfm and --phase-steps write to -o FILE"), -1;
     if ((e->key || e->scale_bar) && (outputs || !have_out))
         return cli_error(CMD, "--key and --scale-bar draw on the PNG picture (-o FILE.png)"), -1;
     if (e->phase_steps && !mono)

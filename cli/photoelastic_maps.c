@@ -193,7 +193,7 @@ int pe_ext_write(const pe_ext *e, const pe_ext_ctx *c)
     if (e->map >= 0 && !pe_has_ext(c->out, ".pfm") && !pe_has_ext(c->out, ".csv"))
         return cli_error(CMD, "--map: -o must end in .pfm or .csv, got '%s'", c->out), CLI_EXIT_USAGE;
     if (e->pfm && !pe_has_ext(c->out, ".pfm"))
-        return cli_error(CMD, "--pfm: -o must end in .pfm, got '%s'", c->out), CLI_EXIT_USAGE;
+        return cli_error(CMD, "--format pfm: -o must end in .pfm, got '%s'", c->out), CLI_EXIT_USAGE;
     if (e->phase_steps && !pe_has_ext(c->out, ".pfm") && !pe_has_ext(c->out, ".png"))
         return cli_error(CMD, "--phase-steps: -o must end in .pfm or .png, got '%s'", c->out), CLI_EXIT_USAGE;
     if (e->map >= 0) return write_map(e, c);

@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "biref/photoelastic.h"
-#include "test_util.h"
+#include "test_cases.h"
 
 static biref_pe_mesh *parse(const char *text, const biref_pe_node_format *f, char *msg)
 {
@@ -24,10 +24,8 @@ static void expect_error(const char *text, const char *needle)
     biref_pe_mesh *m = parse(text, NULL, msg);
     CHECK(m == NULL);
     CHECK(strchr(msg, '\n') == NULL);
-    if (!strstr(msg, needle)) {
-        fprintf(stderr, "expected '%s' in '%s'\n", needle, msg);
-        CHECK(0);
-    }
+    CHECK(strstr(msg, needle) != NULL);
+    if (!strstr(msg, needle)) fprintf(stderr, "expected '%s' in '%s'\n", needle, msg);
     biref_pe_mesh_destroy(m);
 }
 
@@ -38,28 +36,37 @@ static double lin(int c, double x, double y)
     return k[c][0] + k[c][1] * x + k[c][2] * y;
 }
 
-static void test_linear(void)
+/* 400 seeded nodes of the linear field in a 20 x 20 square (m, Pa; ';'-separated, an unused
+ * column, case-insensitive mapped names) and, at (20, 20), a node repeated with a different
+ * stress (element-wise exports repeat nodes). rng continues from the nodes' draws. */
+static biref_pe_mesh *scattered_mesh(test_rng *rng)
 {
-    test_rng r = {12345};
+    *rng = (test_rng){12345};
     size_t cap = 1 << 16, n = 0;
     char *t = malloc(cap);
+    CHECK(t != NULL);
+    if (!t) return NULL;
     n += (size_t)snprintf(t + n, cap - n, "id;X;Y;Sxx;Syy;Sxy;extra\n");
     for (int i = 0; i < 400; i++) {
-        double x = test_uniform(&r, -10, 10), y = test_uniform(&r, -10, 10);
-        n += (size_t)snprintf(t + n, cap - n, "%d;%.17g;%.17g;%.17g;%.17g;%.17g;zz\n", i, x, y, lin(0, x, y), lin(1, x, y),
-                              lin(2, x, y));
+        double x = test_uniform(rng, -10, 10), y = test_uniform(rng, -10, 10);
+        n += (size_t)snprintf(t + n, cap - n, "%d;%.17g;%.17g;%.17g;%.17g;%.17g;zz\n", i, x, y, lin(0, x, y),
+                              lin(1, x, y), lin(2, x, y));
     }
-    /* A repeated node with a different stress: averaged (element-wise exports repeat nodes). */
     n += (size_t)snprintf(t + n, cap - n, "900;20;20;1;2;3;a\n901;20;20;3;4;5;b\n");
-    biref_pe_node_format f = {"X", "Y", "SXX", "syy", "sxy", 1.0, 1.0}; /* case-insensitive names, m, Pa */
+    biref_pe_node_format f = {"X", "Y", "SXX", "syy", "sxy", 1.0, 1.0};
     char msg[256] = "";
     biref_pe_mesh *m = parse(t, &f, msg);
     CHECK(m != NULL);
-    if (!m) {
-        fprintf(stderr, "%s\n", msg);
-        free(t);
-        return;
-    }
+    if (!m) fprintf(stderr, "%s\n", msg);
+    free(t);
+    return m;
+}
+
+static void linear_field_is_interpolated_exactly(void)
+{
+    test_rng r;
+    biref_pe_mesh *m = scattered_mesh(&r);
+    if (!m) return;
     biref_pe_mesh_info info;
     biref_pe_mesh_get_info(m, &info);
     CHECK(info.rows == 402);
@@ -76,17 +83,37 @@ static void test_linear(void)
     }
     CHECK(inside > 1900);
     CHECK(err < 1e-12);
+    biref_pe_mesh_destroy(m);
+}
+
+/* The repeated node is one node with the mean stress; beyond the hull there is no material. */
+static void repeated_nodes_are_averaged_and_outside_the_hull_is_empty(void)
+{
+    test_rng r;
+    biref_pe_mesh *m = scattered_mesh(&r);
+    if (!m) return;
     biref_pe_stress s = {0, 0, 0};
-    CHECK(biref_pe_mesh_stress(m, 20, 20, &s) == 1); /* the merged node itself */
+    CHECK(biref_pe_mesh_stress(m, 20, 20, &s) == 1);
     CHECK_NEAR(s.sxx, 2.0, 1e-12);
     CHECK_NEAR(s.txy, 4.0, 1e-12);
-    CHECK(biref_pe_mesh_stress(m, -30, 0, &s) == 0); /* outside the hull */
-    /* Boundary: a 16 x 16 square with a hole of 2 x 2 (even-odd), in mm. */
+    CHECK(biref_pe_mesh_stress(m, -30, 0, &s) == 0);
+    biref_pe_mesh_destroy(m);
+}
+
+/* Boundary: a 16 x 16 square with a hole of 2 x 2 (even-odd), in mm; malformed outlines. */
+static void boundary_loops_mark_holes_and_outside_as_empty(void)
+{
+    test_rng r;
+    biref_pe_mesh *m = scattered_mesh(&r);
+    if (!m) return;
+    char msg[256] = "";
+    biref_pe_stress s;
     const char *b = "x,y\n-8,-8\n8,-8\n8,8\n-8,8\n\n-1,-1\n1,-1\n1,1\n-1,1\n";
     CHECK(biref_pe_mesh_boundary_parse(m, b, strlen(b), 1.0, msg, sizeof msg) == BIREF_OK);
-    CHECK(biref_pe_mesh_stress(m, 0, 0, &s) == 0);      /* in the hole */
+    CHECK(biref_pe_mesh_stress(m, 0, 0, &s) == 0);     /* in the hole */
     CHECK(biref_pe_mesh_stress(m, 1.5, 0.3, &s) == 1); /* material */
     CHECK(biref_pe_mesh_stress(m, 8.5, 0, &s) == 0);   /* outside the outline */
+    biref_pe_mesh_info info;
     biref_pe_mesh_get_info(m, &info);
     CHECK(info.loops == 2 && info.loop_vertices == 8);
     CHECK(biref_pe_mesh_boundary_parse(m, "0,0\n1,1\n", 8, 1.0, msg, sizeof msg) != BIREF_OK);
@@ -94,11 +121,17 @@ static void test_linear(void)
     CHECK(biref_pe_mesh_boundary_parse(m, "0,0\n1,x\n2,2\n", 12, 1.0, msg, sizeof msg) != BIREF_OK);
     CHECK(strstr(msg, "line 2, column y: not a number: 'x'") != NULL);
     biref_pe_mesh_destroy(m);
-    /* Units: the same numbers in mm and MPa scale by 1e-3 and 1e6; whitespace separators. */
+}
+
+/* Units: the same numbers in mm and MPa scale by 1e-3 and 1e6; whitespace separators. */
+static void default_units_are_mm_and_mpa_with_whitespace_separators(void)
+{
+    char msg[256] = "";
     const char *u = "x y sxx syy txy\n0 0 1 0 0\n10 0 1 0 0\n0 10 1 0 0\n";
-    m = parse(u, NULL, msg);
+    biref_pe_mesh *m = parse(u, NULL, msg);
     CHECK(m != NULL);
     if (m) {
+        biref_pe_stress s;
         CHECK(biref_pe_mesh_stress(m, 2e-3, 2e-3, &s) == 1);
         CHECK_NEAR(s.sxx, 1e6, 1e-6);
         double bb[4];
@@ -106,10 +139,9 @@ static void test_linear(void)
         CHECK_NEAR(bb[1], 0.01, 1e-15);
     }
     biref_pe_mesh_destroy(m);
-    free(t);
 }
 
-static void test_errors(void)
+static void malformed_files_give_one_line_errors(void)
 {
     expect_error("", "empty file");
     expect_error("node,x,y,s11,s22,s12\n1,0,0,1,2,3\n", "the header has no column 'sxx' for sxx");
@@ -123,7 +155,10 @@ static void test_errors(void)
     expect_error("x,y,sxx,syy,txy\n0,0,1,2,3\n1,1,1,2,3\n2,2,1,2,3\n3,3,1,2,3\n", "cannot triangulate");
     expect_error("x,y,x,syy,txy\n", "column x appears twice");
     expect_error("x,y,sxx,syy,txy\n0,0,1e400,2,3\n", "line 2, column sxx: not a finite number");
-    /* A mapped name is reported with its role. */
+}
+
+static void mapped_column_is_named_with_its_role_in_errors(void)
+{
     biref_pe_node_format f;
     biref_pe_node_format_default(&f);
     f.syy = "S22";
@@ -133,9 +168,15 @@ static void test_errors(void)
     biref_pe_mesh_destroy(m);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
-    test_linear();
-    test_errors();
-    return test_report("test_pe_nodes");
+    static const test_case cases[] = {
+        {"linear_field_is_interpolated_exactly", linear_field_is_interpolated_exactly},
+        {"repeated_nodes_are_averaged_and_outside_the_hull_is_empty", repeated_nodes_are_averaged_and_outside_the_hull_is_empty},
+        {"boundary_loops_mark_holes_and_outside_as_empty", boundary_loops_mark_holes_and_outside_as_empty},
+        {"default_units_are_mm_and_mpa_with_whitespace_separators", default_units_are_mm_and_mpa_with_whitespace_separators},
+        {"malformed_files_give_one_line_errors", malformed_files_give_one_line_errors},
+        {"mapped_column_is_named_with_its_role_in_errors", mapped_column_is_named_with_its_role_in_errors},
+    };
+    return test_run_cases("test_pe_nodes", cases, TEST_COUNT(cases), argc, argv);
 }

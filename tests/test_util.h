@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 static int test_failures;
 static int test_checks;
@@ -30,6 +31,9 @@ static int test_checks;
         }                                                                                \
     } while (0)
 
+/* Whether BIREF_TEST_QUICK is set (the sanitizer run): smaller images, fewer random cases. */
+static inline int test_quick(void) { return getenv("BIREF_TEST_QUICK") != NULL; }
+
 static inline int test_report(const char *name)
 {
     if (test_failures) {
@@ -49,6 +53,13 @@ static inline double test_uniform(test_rng *r, double lo, double hi)
     r->s ^= r->s >> 27;
     uint64_t x = r->s * 2685821657736338717ULL;
     return lo + (hi - lo) * ((double)(x >> 11) / 9007199254740992.0);
+}
+
+/* Advances r by n draws: a case that continues another case's seeded sequence starts where that
+ * case left it, so each case alone sees the same numbers as the cases run in order. */
+static inline void test_skip(test_rng *r, long n)
+{
+    while (n-- > 0) (void)test_uniform(r, 0, 1);
 }
 
 /* A random direction, uniform on the sphere (rejection sampling in the unit ball, shell

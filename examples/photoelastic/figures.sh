@@ -13,8 +13,8 @@ S=(--size 320)
 pe --preset disk "${S[@]}" -o "$out/disk-circular-dark-white.png"
 pe --preset disk "${S[@]}" --light mono --lambda-nm 589 -o "$out/disk-circular-dark-589.png"
 pe --preset disk "${S[@]}" --field light --light mono --lambda-nm 589 -o "$out/disk-circular-light-589.png"
-pe --preset disk "${S[@]}" --polariscope plane --polarizer-deg 0 -o "$out/disk-plane-dark-white.png"
-pe --preset disk "${S[@]}" --polariscope plane --polarizer-deg 30 --light mono --lambda-nm 589 \
+pe --preset disk "${S[@]}" --polariscope plane --polarizer linear:0 -o "$out/disk-plane-dark-white.png"
+pe --preset disk "${S[@]}" --polariscope plane --polarizer linear:30 --light mono --lambda-nm 589 \
   -o "$out/disk-plane-dark-589-psi30.png"
 
 # The same disk seen 40 degrees off its normal (general slab path; approximate, see the docs).
@@ -23,7 +23,7 @@ pe --preset disk "${S[@]}" --tilt-deg 40 -o "$out/disk-circular-dark-white-tilt4
 # Plate with a hole under tension (a 5 mm, 60 x 60 mm, h 3 mm, S 2.5 MPa).
 pe --preset hole --stress-MPa 2.5 "${S[@]}" -o "$out/hole-circular-dark-white.png"
 pe --preset hole --stress-MPa 2.5 "${S[@]}" --light mono --lambda-nm 546 --tint -o "$out/hole-circular-dark-546-tint.png"
-pe --preset hole --stress-MPa 2.5 "${S[@]}" --polariscope plane --polarizer-deg 0 \
+pe --preset hole --stress-MPa 2.5 "${S[@]}" --polariscope plane --polarizer linear:0 \
   -o "$out/hole-plane-dark-white.png"
 
 # Beam in pure bending (100 x 20 mm, h 6 mm, M 1500 N mm).
@@ -45,5 +45,5 @@ pe --preset disk --size 160 --light mono --lambda-nm 589 --phase-steps 6 -o "$ou
 csv=$(mktemp)
 trap 'rm -f "$csv"' EXIT
 "$here/card_stress.sh" "$csv" 300 0.76 0.4
-pe --stress-grid "$csv" --thickness-mm 0.76 --polariscope plane --polarizer-deg 0 --field dark --size 480 \
+pe --stress-grid "$csv" --thickness-mm 0.76 --polariscope plane --polarizer linear:0 --field dark --size 480 \
   -o "$out/card-plane-dark-white.png"

@@ -5,10 +5,10 @@
 set -u
 . "$(dirname "$0")/lib.sh"
 grid=(--theta-max-deg 80 --theta-step-deg 40 --azimuths 2 --threads 2)
-tiny=("${grid[@]}" --samples-ref 256 --samples-check 512)
+tiny=("${grid[@]}" --reference-samples 256 --check-samples 512)
 
 expect_ok "help" accuracy --help
-for opt in --reference-samples --samples-ref --samples-check --cost --cost-only --cost-iterations --plot-dir; do
+for opt in --reference-samples --samples-ref --check-samples --samples-check --cost --cost-only --cost-iterations --plot-dir; do
   expect_grep "help lists $opt" "$opt"
 done
 
@@ -89,14 +89,14 @@ expect_error "zero azimuths" accuracy "${tiny[@]}" --azimuths 0
 expect_error "theta max 90" accuracy "${tiny[@]}" --theta-max-deg 90
 expect_error "theta step 0" accuracy "${tiny[@]}" --theta-step-deg 0
 expect_error "theta step nan" accuracy "${tiny[@]}" --theta-step-deg nan
-expect_error "zero reference samples" accuracy "${tiny[@]}" --samples-ref 0
+expect_error "zero reference samples" accuracy "${tiny[@]}" --reference-samples 0
 expect_error "zero reference samples (new name)" accuracy "${tiny[@]}" --reference-samples 0
 expect_error "plot dir missing" accuracy "${tiny[@]}" --plot-dir "$tmpdir/no/such/dir"
 expect_error "cost-only with csv" accuracy --cost-only --csv "$tmpdir/x.csv"
 expect_error "cost iterations without cost" accuracy "${tiny[@]}" --cost-iterations 5
 expect_error "zero cost runs" accuracy --cost-only --cost-runs 0
 expect_error "zero cost time" accuracy --cost-only --cost-min-time 0
-expect_error "negative check samples" accuracy "${tiny[@]}" --samples-check -1
+expect_error "negative check samples" accuracy "${tiny[@]}" --check-samples -1
 expect_error "zero threads" accuracy "${tiny[@]}" --threads 0
 expect_error "sweep gives eps_e <= 0" accuracy "${tiny[@]}" --sweep-delta-eps -5
 expect_error "sweep garbage" accuracy "${tiny[@]}" --sweep-delta-eps 0.1,,0.2
@@ -131,7 +131,7 @@ expect_error "materials file with an unknown top-level key" accuracy "${tiny[@]}
 expect_error "theta step 1e-300" accuracy "${tiny[@]}" --theta-step-deg 1e-300
 grep -q 'more than 100000 angles' "$tmpdir/err" || { echo "FAIL (theta step message)"; fails=$((fails + 1)); }
 expect_ok "check step far beyond the grid" accuracy --theta-max-deg 0 --theta-step-deg 1e-300 --check-step-deg 1e300 \
-  --azimuths 1 --samples-ref 64 --samples-check 128 --sweep-delta-eps none --materials "$tmpdir/mat.json"
+  --azimuths 1 --reference-samples 64 --check-samples 128 --sweep-delta-eps none --materials "$tmpdir/mat.json"
 # A usage error or an interrupted run leaves existing reports alone and creates no empty ones.
 echo previous >"$tmpdir/prev.csv"
 expect_error "usage error keeps the old csv" accuracy "${tiny[@]}" --csv "$tmpdir/prev.csv" --azimuths 0

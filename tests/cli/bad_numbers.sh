@@ -38,7 +38,7 @@ named "product named" 'camera.exposure'
   { echo "FAIL (images written for refused scenes)"; fails=$((fails + 1)); }
 
 # Photoelastic loads: bounded by the nominal stress they give.
-pe=(--profile 0,-5,0,5 --samples 3)
+pe=(--profile 0,-5,0,5 --profile-points 3)
 expect_error "load 1e300" photoelastic --preset disk --load-N 1e300 "${pe[@]}"
 named "load named" 'load'
 expect_error "thickness 1e-300" photoelastic --preset disk --thickness-mm 1e-300 "${pe[@]}"

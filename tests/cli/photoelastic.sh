@@ -12,7 +12,7 @@ expect_grep "help lists --profile" "--profile"
 # Pictures of every preset, both polariscopes, both lights.
 for preset in disk hole beam; do
   expect_ok "$preset white circular" photoelastic --preset "$preset" "${small[@]}" -o "$tmpdir/$preset.png"
-  expect_ok "$preset mono plane" photoelastic --preset "$preset" --polariscope plane --polarizer-deg 30 \
+  expect_ok "$preset mono plane" photoelastic --preset "$preset" --polariscope plane --polarizer linear:30 \
     --light mono --lambda-nm 546 --tint "${small[@]}" -o "$tmpdir/$preset-mono.png"
 done
 for f in disk hole beam disk-mono; do
@@ -30,12 +30,12 @@ cmp -s "$tmpdir/t1.png" "$tmpdir/t2.png" || { echo "FAIL (threads change the pic
 expect_ok "tilted disk" photoelastic --preset disk --tilt-deg 60 --size 40 -o "$tmpdir/tilt.png" --json
 expect_grep "tilted height" '"height":[[:space:]]*20,'
 expect_grep "tilt in json" '"tilt_deg":[[:space:]]*60'
-expect_ok "tilted mono profile" photoelastic --preset hole --tilt-deg 30 --light mono --profile -20,10,20,10 --samples 5
+expect_ok "tilted mono profile" photoelastic --preset hole --tilt-deg 30 --light mono --profile -20,10,20,10 --profile-points 5
 
 # Profile along the disk's vertical diameter, monochromatic, index-matched surround (no
 # reflections): N = 4 C P R / (pi lambda (R^2 - y^2)) and dark circular intensity sin^2(pi N).
 expect_ok "disk profile" photoelastic --preset disk --radius-mm 20 --load-N 400 --material epoxy --eta-i 1.57 \
-  --light mono --lambda-nm 589 --profile 0,-18,0,18 --samples 37
+  --light mono --lambda-nm 589 --profile 0,-18,0,18 --profile-points 37
 awk -v C=50e-12 -v P=400 -v R=0.02 -v lam=589e-9 '
   /^#/ { next }
   { y = $2 * 1e-3; N = 4 * C * P * R / (3.141592653589793 * lam * (R * R - y * y));
@@ -46,7 +46,7 @@ awk -v C=50e-12 -v P=400 -v R=0.02 -v lam=589e-9 '
   fails=$((fails + 1))
 
 # JSON: white-light fringe orders are quoted at 550 nm; outside points have nulls.
-expect_ok "json profile" photoelastic --preset hole --profile -30,0,30,0 --samples 7 --json
+expect_ok "json profile" photoelastic --preset hole --profile -30,0,30,0 --profile-points 7 --json
 expect_grep "json fringe lambda" '"fringe_order_lambda_nm":[[:space:]]*550'
 expect_grep "json note" 'fringe_order_note'
 expect_grep "json retardation" '"retardation_nm":'
@@ -59,7 +59,7 @@ expect_grep "json picture keys" '"ms":'
 bash "$(dirname "$0")/../../examples/photoelastic/card_stress.sh" "$tmpdir/card.csv" 300 0.76 2.0 ||
   { echo "FAIL (card_stress.sh)"; fails=$((fails + 1)); }
 expect_ok "card picture" photoelastic --stress-grid "$tmpdir/card.csv" --thickness-mm 0.76 \
-  --polariscope plane --polarizer-deg 0 "${small[@]}" -o "$tmpdir/card.png"
+  --polariscope plane --polarizer linear:0 "${small[@]}" -o "$tmpdir/card.png"
 expect_ok "example csv" photoelastic --stress-grid "$(dirname "$0")/../../examples/photoelastic/gradient.csv" \
   "${small[@]}" -o "$tmpdir/g.png"
 
@@ -106,10 +106,10 @@ expect_error "bad field" photoelastic --preset disk --field grey -o "$tmpdir/x.p
 expect_error "bad light" photoelastic --preset disk --light laser -o "$tmpdir/x.png"
 expect_error "nothing to do" photoelastic --preset disk
 expect_error "bad profile" photoelastic --preset disk --profile 1,2,3
-expect_error "samples without profile" photoelastic --preset disk --samples 5 -o "$tmpdir/x.png"
+expect_error "samples without profile" photoelastic --preset disk --profile-points 5 -o "$tmpdir/x.png"
 expect_error "size zero" photoelastic --preset disk --size 0 -o "$tmpdir/x.png"
 expect_error "tilt too large" photoelastic --preset disk --tilt-deg 85 -o "$tmpdir/x.png"
-expect_error "bad view" photoelastic --preset disk --view-mm 1,0,0,1 -o "$tmpdir/x.png"
+expect_error "bad view" photoelastic --preset disk --window-mm 1,0,1,1 -o "$tmpdir/x.png"
 expect_error "unknown option" photoelastic --preset disk --frobnicate -o "$tmpdir/x.png"
 expect_error "stray argument" photoelastic --preset disk extra -o "$tmpdir/x.png"
 expect_error "unwritable output" photoelastic --preset disk -o "$tmpdir/no/such/dir/x.png"

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # biref photoelastic --phase-steps and demodulate: the six-step set of the disk as 16-bit PNGs and
 # as PFMs, demodulated from the empty field (order 0) back to the fringe order of --map within
-# 0.02 away from the load points; the four-step set; --pfm pictures; one-line errors.
+# 0.02 away from the load points; the four-step set; --format pfm pictures; one-line errors.
 set -u
 . "$(dirname "$0")/lib.sh"
 common=(--preset disk --light mono --lambda-nm 589 --size 120)
@@ -33,16 +33,16 @@ for m in isoclinic phase-wrapped fringe-order modulation background; do
 done
 
 # Float pictures.
-expect_ok "pfm grey" photoelastic "${common[@]}" --pfm -o "$tmpdir/g.pfm"
+expect_ok "pfm grey" photoelastic "${common[@]}" --format pfm -o "$tmpdir/g.pfm"
 [ "$(head -c 2 "$tmpdir/g.pfm")" = "Pf" ] || { echo "FAIL (grey PFM)"; fails=$((fails + 1)); }
-expect_ok "pfm colour" photoelastic --preset hole --size 40 --pfm -o "$tmpdir/c.pfm"
+expect_ok "pfm colour" photoelastic --preset hole --size 40 --format pfm -o "$tmpdir/c.pfm"
 [ "$(head -c 2 "$tmpdir/c.pfm")" = "PF" ] || { echo "FAIL (colour PFM)"; fails=$((fails + 1)); }
 
 # Errors.
 expect_error "white steps" photoelastic --preset disk --phase-steps 6 -o "$tmpdir/w.pfm"
 expect_error "steps 5" photoelastic "${common[@]}" --phase-steps 5 -o "$tmpdir/w.pfm"
 expect_error "steps ext" photoelastic "${common[@]}" --phase-steps 4 -o "$tmpdir/w.tif"
-expect_error "map and pfm" photoelastic "${common[@]}" --pfm --map isoclinic -o "$tmpdir/w.pfm"
+expect_error "map and pfm" photoelastic "${common[@]}" --format pfm --map isoclinic -o "$tmpdir/w.pfm"
 expect_error "five images" photoelastic demodulate "$tmpdir"/s-{1,2,3,4,5}.png --zero-order 1,1 -o "$tmpdir/x"
 expect_error "no reference" photoelastic demodulate "$tmpdir"/s-{1,2,3,4,5,6}.png -o "$tmpdir/x"
 expect_error "reference outside" photoelastic demodulate "$tmpdir"/s-{1,2,3,4,5,6}.png --zero-order 500,1 -o "$tmpdir/x"

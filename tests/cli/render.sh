@@ -50,7 +50,7 @@ expect_error "missing scene file" render "$tmpdir/nope.json" -o "$tmpdir/t.png"
 expect_error "missing -o" render "$good"
 expect_error "missing scene argument" render -o "$tmpdir/t.png"
 expect_error "bad method" render "$good" -o "$tmpdir/t.png" --method magic
-expect_error "samples without numeric" render "$good" -o "$tmpdir/t.png" --samples 8
+expect_error "samples without numeric" render "$good" -o "$tmpdir/t.png" --spectral-samples 8
 expect_error "zero width" render "$good" -o "$tmpdir/t.png" --width 0
 expect_error "bad threads" render "$good" -o "$tmpdir/t.png" --threads x
 expect_error "unknown option" render "$good" -o "$tmpdir/t.png" --frobnicate
@@ -59,7 +59,7 @@ expect_error "world-fixed polarizer with analytic" render "$tmpdir/wf.json" -o "
 grep -q "world-fixed polarizers need --method expansion, numeric or ground-truth" "$tmpdir/err" ||
   { echo "FAIL (world-fixed message)"; fails=$((fails + 1)); }
 expect_ok "world-fixed polarizer with numeric" render "$tmpdir/wf.json" -o "$tmpdir/wf.png" "${small[@]}" \
-  --method numeric --samples 8
+  --method numeric --spectral-samples 8
 expect_ok "world-fixed polarizer with expansion" render "$tmpdir/wf.json" -o "$tmpdir/wf.png" "${small[@]}" \
   --method expansion
 expect_ok "fig. 9c with a world-fixed analyzer at 45 degrees" render examples/fig9c_analyzer45.json \
@@ -87,7 +87,7 @@ expect_ok "render 2 threads" render "$good" -o "$tmpdir/b.png" --threads 2 --qui
 expect_ok "diff identical" diff "$tmpdir/a.png" "$tmpdir/b.png" -o "$tmpdir/d.png" --json
 expect_grep "identical: max 0" '"max":[[:space:]]*0[,}]?$'
 [ -s "$tmpdir/d.png" ] || { echo "FAIL (no diff map)"; fails=$((fails + 1)); }
-expect_ok "render numeric" render "$good" -o "$tmpdir/n.png" --method numeric --samples 16 --quiet
+expect_ok "render numeric" render "$good" -o "$tmpdir/n.png" --method numeric --spectral-samples 16 --quiet
 expect_ok "diff analytic vs numeric" diff "$tmpdir/a.png" "$tmpdir/n.png"
 expect_grep "diff plain output" "95th percentile"
 expect_ok "render smaller" render "$good" -o "$tmpdir/s.png" "${small[@]}"
@@ -104,12 +104,25 @@ expect_ok "render antialias none" render "$good" -o "$tmpdir/p.png" "${small[@]}
 expect_grep "none in json" '"antialias":[[:space:]]*"none"'
 expect_ok "render supersample" render "$good" -o "$tmpdir/p.png" "${small[@]}" --supersample 2 --json
 expect_grep "supersample in json" '"supersample":[[:space:]]*2'
-expect_ok "numeric defaults to none" render "$good" -o "$tmpdir/p.png" "${small[@]}" --method numeric --samples 8
+expect_ok "numeric defaults to none" render "$good" -o "$tmpdir/p.png" "${small[@]}" --method numeric --spectral-samples 8
 expect_error "prefilter with numeric" render "$good" -o "$tmpdir/p.png" "${small[@]}" --method numeric --antialias prefilter
 expect_error "bad antialias" render "$good" -o "$tmpdir/p.png" "${small[@]}" --antialias box
 expect_error "supersample 0" render "$good" -o "$tmpdir/p.png" "${small[@]}" --supersample 0
 expect_error "supersample too large" render "$good" -o "$tmpdir/p.png" "${small[@]}" --supersample 65
 expect_ok "diff map without legend" diff "$tmpdir/a.png" "$tmpdir/b.png" -o "$tmpdir/d2.png" --no-legend
+
+# --chroma-map: written with its statistics; a grey-lit slab without polarizers is nearly grey,
+# the crossed polarizers of the fig. 9c scene are far from it; a bad path is one error line.
+src=$(dirname "$0")/../..
+expect_ok "chroma map" render "$src/examples/fig9b.json" -o "$tmpdir/c.png" --width 32 --height 18 --quiet \
+  --chroma-map "$tmpdir/cm.png" --json
+expect_grep "chroma map in json" '"chroma_map":'
+expect_grep "fig9b nearly grey" '"p99":[[:space:]]*0\.'
+[ -s "$tmpdir/cm.png" ] || { echo "FAIL (chroma map file)"; fails=$((fails + 1)); }
+expect_ok "chroma map coloured" render "$src/examples/fig9c.json" -o "$tmpdir/c.png" --width 32 --height 18 --quiet \
+  --chroma-map "$tmpdir/cm.png" --json
+expect_grep "fig9c coloured" '"max":[[:space:]]*([1-9][0-9]|[4-9])'
+expect_error "chroma map unwritable" render "$good" -o "$tmpdir/c.png" "${small[@]}" --chroma-map /nonexistent/cm.png
 
 # bench: JSON keys, extrapolation under a tiny budget.
 expect_ok "bench json" bench --scene "$good" --width 32 --height 18 --methods analytic,numeric-8 --max-seconds 2 --json

@@ -17,7 +17,7 @@ expect_grep "analytic has no samples" '"samples":[[:space:]]*null'
 expect_grep "default cmf" '"cmf":[[:space:]]*"cie1931"'
 expect_grep "default analyzer" '"analyzer":[[:space:]]*"none"'
 
-expect_ok "numeric json" spectrum "${slab[@]}" --method numeric --samples 16 --json
+expect_ok "numeric json" spectrum "${slab[@]}" --method numeric --spectral-samples 16 --json
 expect_grep "numeric samples" '"samples":[[:space:]]*16,'
 expect_ok "numeric default samples" spectrum "${slab[@]}" --method numeric --json
 expect_grep "numeric default 64" '"samples":[[:space:]]*64,'
@@ -48,11 +48,11 @@ if grep -q $'\033' "$tmpdir/out"; then
   fails=$((fails + 1))
 fi
 
-expect_error "samples zero" spectrum "${slab[@]}" --method numeric --samples 0
-expect_error "samples negative" spectrum "${slab[@]}" --method numeric --samples -4
-expect_error "samples garbage" spectrum "${slab[@]}" --method numeric --samples 8x
-expect_error "samples with analytic" spectrum "${slab[@]}" --samples 16
-expect_error "samples with ground truth" spectrum "${slab[@]}" --method ground-truth --samples 16
+expect_error "samples zero" spectrum "${slab[@]}" --method numeric --spectral-samples 0
+expect_error "samples negative" spectrum "${slab[@]}" --method numeric --spectral-samples -4
+expect_error "samples garbage" spectrum "${slab[@]}" --method numeric --spectral-samples 8x
+expect_error "samples with analytic" spectrum "${slab[@]}" --spectral-samples 16
+expect_error "samples with ground truth" spectrum "${slab[@]}" --method ground-truth --spectral-samples 16
 expect_error "inverted range" spectrum "${slab[@]}" --range-nm 700,380
 expect_error "empty range" spectrum "${slab[@]}" --range-nm 500,500
 expect_error "zero range start" spectrum "${slab[@]}" --range-nm 0,700
@@ -85,7 +85,7 @@ expect_error "stray argument" spectrum "${slab[@]}" extra
 expect_ok "expansion" spectrum "${slab[@]}" --method expansion --json
 expect_grep "expansion order reported" '"expansion_order"'
 expect_ok "crossed linear polarisers" spectrum "${slab[@]}" --method expansion --polarizer linear:30 --analyzer linear:120
-expect_ok "circular analyzer, numeric" spectrum "${slab[@]}" --method numeric --samples 256 --stokes 1,0.2,0.3,0.4 --analyzer circular:-1
+expect_ok "circular analyzer, numeric" spectrum "${slab[@]}" --method numeric --spectral-samples 256 --stokes 1,0.2,0.3,0.4 --analyzer circular:-1
 expect_ok "fixed order" spectrum "${slab[@]}" --method expansion --order 3
 expect_error "general polariser with analytic" spectrum "${slab[@]}" --polarizer linear:10
 expect_error "circular analyzer with analytic" spectrum "${slab[@]}" --analyzer circular:+1

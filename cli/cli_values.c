@@ -1,0 +1,32 @@
+#include "cli_values.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "cli_common.h"
+
+int cli_parse_linear_polarizer(const char *cmd, const char *opt, const char *text, double *deg)
+{
+    static const char prefix[] = "linear:";
+    if (strncmp(text, prefix, sizeof prefix - 1) != 0) {
+        cli_error(cmd, "%s: expected linear:DEG (a polariscope's polarizer is linear), got '%s'", opt, text);
+        return -1;
+    }
+    return cli_parse_double(cmd, opt, text + sizeof prefix - 1, deg);
+}
+
+int cli_parse_window(const char *cmd, const char *opt, const char *text, double frame[4])
+{
+    double c[4];
+    if (cli_parse_list(cmd, opt, text, c, 4)) return -1;
+    if (c[0] == c[2] || c[1] == c[3]) {
+        cli_error(cmd, "%s: expected two opposite corners x0,y0,x1,y1 with x0 != x1 and y0 != y1, got '%s'", opt,
+                  text);
+        return -1;
+    }
+    frame[0] = fmin(c[0], c[2]);
+    frame[1] = fmax(c[0], c[2]);
+    frame[2] = fmin(c[1], c[3]);
+    frame[3] = fmax(c[1], c[3]);
+    return 0;
+}

@@ -186,13 +186,15 @@ int cmd_bench(int argc, char **argv)
 
     float *xyz = malloc((size_t)W * H * 3 * sizeof *xyz);
     if (!xyz) return cli_error(CMD, "out of memory for a %dx%d frame", W, H), CLI_EXIT_FAIL;
-    int verbose = !json && isatty(fileno(stderr));
+    biref_progress_bar bar;
+    biref_progress_bar_init(&bar, stderr, 1, "bench");
     for (int i = 0; i < n_methods && !rc; i++) {
         bench_method *b = &m[i];
         b->opt.threads = n_threads;
         biref_renderer *r = NULL;
         if ((rc = cli_renderer_create(CMD, &scene, &b->opt, &r))) break;
-        if (verbose) fprintf(stderr, "timing %s ...\n", b->name);
+        biref_progress_bar_note(&bar, b->name);
+        biref_progress_bar_update(&bar, i, n_methods);
         /* Probe one row per thread, then spend the budget on as many evenly spaced rows as fit
          * (the whole frame if it fits). */
         int rows = 0, k = n_threads < H ? n_threads : H;
@@ -214,6 +216,8 @@ int cmd_bench(int argc, char **argv)
         b->ms = b->extrapolated ? b->cpu_ms / (n_threads < cores ? n_threads : cores) : 1e3 * t * H / rows;
         biref_renderer_destroy(r);
     }
+    if (!rc) biref_progress_bar_update(&bar, n_methods, n_methods);
+    biref_progress_bar_finish(&bar);
     free(xyz);
     if (rc) return rc;
     double gl_gpu_ms = 0, gl_wall_ms = 0;

@@ -3,7 +3,7 @@
 # 1 and on 2 threads, the timings and the thread count aside.
 set -u
 . "$(dirname "$0")/lib.sh"
-small=(accuracy --theta-max-deg 80 --theta-step-deg 20 --azimuths 3 --reference-samples 512 --sweep-delta-eps 0.01
+small=(accuracy --theta-max-deg 80 --theta-step-deg 40 --azimuths 2 --reference-samples 256 --check-samples 512
        --json)
 expect_ok "1 thread" "${small[@]}" --threads 1
 mv "$tmpdir/out" "$tmpdir/t1.json"

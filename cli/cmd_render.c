@@ -5,6 +5,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "chroma_map.h"
 #include "cli_gl.h"
 #include "cli_polarizer.h"
 #include "cli_render.h"
@@ -41,6 +42,8 @@ static void help(void)
            "  --height H           image height in pixels (overrides the scene)\n"
            "  --threads T          OpenMP threads (default: all cores); the image does not depend on T\n"
            "  --pfm FILE           also write linear sRGB floats as a PFM\n"
+           "  --chroma-map FILE    also write each pixel's dE00 from the grey of its lightness (how\n"
+           "                       visible its colour is, from the floats) on biref diff's scale\n"
            "  --json               print {width, height, method, samples, ms, mean_srgb, ...} on stdout\n"
            "  -q, --quiet          no progress on stderr (default: a bar on a terminal, otherwise a\n"
            "                       line every few seconds once the job has run 2 s)\n"
@@ -52,7 +55,7 @@ static void help(void)
 }
 
 enum { OPT_METHOD = 2000, OPT_SAMPLES, OPT_WIDTH, OPT_HEIGHT, OPT_THREADS, OPT_PFM, OPT_JSON, OPT_ORDER, OPT_TOLERANCE, OPT_BACKEND,
-       OPT_ANTIALIAS, OPT_SUPERSAMPLE };
+       OPT_ANTIALIAS, OPT_SUPERSAMPLE, OPT_CHROMA_MAP };
 
 int cmd_render(int argc, char **argv)
 {
@@ -69,11 +72,12 @@ int cmd_render(int argc, char **argv)
                                              {"height", required_argument, 0, OPT_HEIGHT},
                                              {"threads", required_argument, 0, OPT_THREADS},
                                              {"pfm", required_argument, 0, OPT_PFM},
+                                             {"chroma-map", required_argument, 0, OPT_CHROMA_MAP},
                                              {"json", no_argument, 0, OPT_JSON},
                                              {"quiet", no_argument, 0, 'q'},
                                              {"help", no_argument, 0, 'h'},
                                              {0, 0, 0, 0}};
-    const char *out = NULL, *pfm = NULL;
+    const char *out = NULL, *pfm = NULL, *chroma = NULL;
     long width = 0, height = 0, threads = 0, samples = 0, supersample = 1;
     int json = 0, quiet = 0, have_samples = 0, have_expansion_opt = 0, gl = 0, have_method = 0, antialias = -1;
     biref_render_options opt;
@@ -130,6 +134,7 @@ int cmd_render(int argc, char **argv)
                 return CLI_EXIT_USAGE;
             break;
         case OPT_PFM: pfm = optarg; break;
+        case OPT_CHROMA_MAP: chroma = optarg; break;
         case OPT_JSON: json = 1; break;
         default: cli_getopt_error(CMD, c, argv); return CLI_EXIT_USAGE;
         }
@@ -164,7 +169,9 @@ int cmd_render(int argc, char **argv)
     if (rc) return rc;
     /* Fail on a bad output path before rendering for seconds, not after. */
     const char *inputs[2] = {scene_path, out};
-    if ((rc = cli_check_output(CMD, out, inputs, 1)) || (pfm && (rc = cli_check_output(CMD, pfm, inputs, 2)))) return rc;
+    if ((rc = cli_check_output(CMD, out, inputs, 1)) || (pfm && (rc = cli_check_output(CMD, pfm, inputs, 2))) ||
+        (chroma && (rc = cli_check_output(CMD, chroma, inputs, 2))))
+        return rc;
     biref_renderer *r = NULL;
     /* The GL back-end handles world-fixed polarizers too (docs/GPU.md): no CPU renderer then. */
     if (!gl && (rc = cli_renderer_create(CMD, &scene, &opt, &r))) return rc;
@@ -209,6 +216,8 @@ int cmd_render(int argc, char **argv)
         cli_error(CMD, "%s", msg);
         rc = CLI_EXIT_FAIL;
     }
+    cli_chroma_stats cst;
+    if (!rc && chroma) rc = cli_chroma_map_write(CMD, chroma, W, H, xyz, &cst);
     if (!rc && pfm) {
         /* Reuse the XYZ buffer in place: each pixel is read before it is overwritten. */
         biref_xyz_image_to_linear_srgb(xyz, n, xyz);
@@ -248,6 +257,13 @@ int cmd_render(int argc, char **argv)
         cJSON_AddNumberToObject(root, "fallback_evaluations", (double)stats.fallback_evals);
         cJSON_AddStringToObject(root, "output", out);
         if (pfm) cJSON_AddStringToObject(root, "pfm", pfm);
+        if (chroma) {
+            cJSON *cm = cJSON_AddObjectToObject(root, "chroma_map");
+            cJSON_AddStringToObject(cm, "path", chroma);
+            cJSON_AddNumberToObject(cm, "mean", cst.mean);
+            cJSON_AddNumberToObject(cm, "p99", cst.p99);
+            cJSON_AddNumberToObject(cm, "max", cst.max);
+        }
         return json_print_and_free(root) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
     }
     /* With the image on standard output ("-o -"), the summary goes to standard error. */
@@ -257,5 +273,8 @@ int cmd_render(int argc, char **argv)
     if (opt.antialias == BIREF_ANTIALIAS_PREFILTER) fprintf(info, ", prefiltered");
     if (opt.supersample > 1) fprintf(info, ", %dx%d samples/pixel", opt.supersample, opt.supersample);
     fprintf(info, ", %.0f ms)%s%s\n", ms, pfm ? " and " : "", pfm ? pfm : "");
+    if (chroma)
+        fprintf(info, "wrote %s (dE00 from grey: mean %.2f, 99th percentile %.2f, max %.2f)\n", chroma, cst.mean, cst.p99,
+                cst.max);
     return CLI_EXIT_OK;
 }

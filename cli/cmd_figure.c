@@ -19,7 +19,7 @@
 #include "fig_aliasing.h"
 #include "fig_common.h"
 #include "fig_plot.h"
-#include "io/outfile.h"
+#include "outfile.h"
 
 
 static void help(void)

@@ -19,7 +19,7 @@ static biref_integrator *make(biref_method m, int samples)
     o.method = m;
     if (samples) o.samples = samples;
     biref_integrator *it = NULL;
-    CHECK(biref_integrator_create(sp, &o, &it) == BIREF_OK);
+    CHECK(biref_integrator_create(sp, &o, &it, NULL, 0) == BIREF_OK);
     return it;
 }
 
@@ -33,18 +33,18 @@ static void options_are_checked(void)
     CHECK(o.method == BIREF_METHOD_ANALYTIC && o.samples == 64 && o.expansion.order == -1);
     o.method = BIREF_METHOD_NUMERIC;
     o.samples = 0;
-    CHECK(biref_integrator_create(sp, &o, &it) == BIREF_ERR_INVALID && it == NULL);
+    CHECK(biref_integrator_create(sp, &o, &it, NULL, 0) == BIREF_ERR_INVALID && it == NULL);
     o.samples = BIREF_NUMERIC_MAX_SAMPLES + 1;
-    CHECK(biref_integrator_create(sp, &o, &it) == BIREF_ERR_INVALID);
+    CHECK(biref_integrator_create(sp, &o, &it, NULL, 0) == BIREF_ERR_INVALID);
     o.method = BIREF_METHOD_EXPANSION;
     o.expansion.order = BIREF_EXPANSION_MAX_ORDER + 1;
-    CHECK(biref_integrator_create(sp, &o, &it) == BIREF_ERR_INVALID);
+    CHECK(biref_integrator_create(sp, &o, &it, NULL, 0) == BIREF_ERR_INVALID);
     o.expansion.order = -1;
     o.expansion.tolerance = 1.0;
-    CHECK(biref_integrator_create(sp, &o, &it) == BIREF_ERR_INVALID);
+    CHECK(biref_integrator_create(sp, &o, &it, NULL, 0) == BIREF_ERR_INVALID);
     o.method = (biref_method)42;
-    CHECK(biref_integrator_create(sp, &o, &it) == BIREF_ERR_INVALID);
-    CHECK(biref_integrator_create(NULL, &o, &it) == BIREF_ERR_INVALID);
+    CHECK(biref_integrator_create(sp, &o, &it, NULL, 0) == BIREF_ERR_INVALID);
+    CHECK(biref_integrator_create(NULL, &o, &it, NULL, 0) == BIREF_ERR_INVALID);
     it = make(BIREF_METHOD_GROUND_TRUTH, 0);
     CHECK(biref_integrator_method(it) == BIREF_METHOD_GROUND_TRUTH);
     CHECK(biref_integrator_samples(it) == BIREF_GROUND_TRUTH_SAMPLES);
@@ -112,7 +112,7 @@ static void integrate_equals_entry_points(void)
 
     biref_integrator *nu = make(BIREF_METHOD_NUMERIC, 37);
     biref_numeric_plan *plan = NULL;
-    CHECK(biref_numeric_plan_create(sp, 37, &plan) == BIREF_OK);
+    CHECK(biref_numeric_plan_create(sp, 37, &plan, NULL, 0) == BIREF_OK);
     CHECK(biref_integrate(nu, &st, BIREF_SIDE_BOTH, &l, &r) == BIREF_OK);
     biref_spectrum_numeric(plan, &st, &x);
     biref_spectrum_mix(x.T, w, mask, T);
@@ -253,7 +253,7 @@ static void photoelastic_through_integrator(void)
     CHECK(same3(a, b));
     biref_integrator *gt = make(BIREF_METHOD_GROUND_TRUTH, 0);
     biref_numeric_plan *plan = NULL;
-    CHECK(biref_numeric_plan_create(sp, BIREF_GROUND_TRUTH_SAMPLES, &plan) == BIREF_OK);
+    CHECK(biref_numeric_plan_create(sp, BIREF_GROUND_TRUTH_SAMPLES, &plan, NULL, 0) == BIREF_OK);
     CHECK(biref_pe_shade_integrated(&s, gt, &p, 0.0, a) == BIREF_OK);
     CHECK(biref_pe_shade_numeric(&s, plan, &p, b) == BIREF_OK);
     CHECK(same3(a, b));
@@ -271,7 +271,7 @@ int main(int argc, char **argv)
 {
     biref_spectral_config cfg;
     biref_spectral_config_default(&cfg);
-    if (biref_spectral_create(&cfg, &sp) != BIREF_OK) return 1;
+    if (biref_spectral_create(&cfg, &sp, NULL, 0) != BIREF_OK) return 1;
     static const test_case cases[] = {
         {"options_are_checked", options_are_checked},
         {"light_constructors", light_constructors},

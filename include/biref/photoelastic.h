@@ -270,7 +270,7 @@ typedef struct {
  * light. Deterministic and independent of the thread count. BIREF_ERR_INVALID for a tilt outside
  * [0, 89 deg]. */
 BIREF_API biref_status biref_pe_render(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_field *f,
-                                       const biref_pe_image_opts *opt, float *xyz);
+                                       const biref_pe_image_opts *opt, float *xyz, char *msg, size_t msg_len);
 
 /* ------------------------------------------------------------------------ */
 /* Nodes from a finite-element export                                        */
@@ -343,7 +343,8 @@ BIREF_API double biref_pe_map_value(biref_pe_map_kind k, const biref_pe_setup *s
 /* The map on the pixel grid of biref_pe_render (one sample at each pixel centre, top row =
  * frame's ymax), NAN where there is no material. */
 BIREF_API biref_status biref_pe_render_map(const biref_pe_setup *s, const biref_pe_field *f, biref_pe_map_kind k,
-                                 double lambda_nm, int width, int height, int threads, float *out);
+                                 double lambda_nm, int width, int height, int threads, float *out, char *msg,
+                                 size_t msg_len);
 
 /* ------------------------------------------------------------------------ */
 /* Phase stepping                                                            */

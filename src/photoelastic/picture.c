@@ -4,16 +4,21 @@
 #include <omp.h>
 
 #include "biref/photoelastic.h"
+#include "error.h"
 
 biref_status biref_pe_render(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_field *f,
-                             const biref_pe_image_opts *opt, float *xyz)
+                             const biref_pe_image_opts *opt, float *xyz, char *msg, size_t msg_len)
 {
-    if (!s || !f || !opt || !xyz || opt->width < 1 || opt->height < 1 || opt->supersample < 1 ||
-        opt->supersample > 8)
-        return BIREF_ERR_INVALID;
-    if (s->light == BIREF_PE_WHITE && !sp) return BIREF_ERR_INVALID;
-    if (!(f->frame[1] > f->frame[0] && f->frame[3] > f->frame[2])) return BIREF_ERR_INVALID;
-    if (!(opt->tilt >= 0.0 && opt->tilt <= 89.0 * M_PI / 180.0)) return BIREF_ERR_INVALID;
+    if (!s || !f || !opt || !xyz) return biref_fail(msg, msg_len, "no setup, field, options or output");
+    if (opt->width < 1 || opt->height < 1)
+        return biref_fail(msg, msg_len, "%d x %d pixels: the picture needs at least 1 x 1", opt->width, opt->height);
+    if (opt->supersample < 1 || opt->supersample > 8)
+        return biref_fail(msg, msg_len, "supersampling %d: expected 1 to 8", opt->supersample);
+    if (s->light == BIREF_PE_WHITE && !sp) return biref_fail(msg, msg_len, "white light needs a spectral context");
+    if (!(f->frame[1] > f->frame[0] && f->frame[3] > f->frame[2]))
+        return biref_fail(msg, msg_len, "the field's frame is empty");
+    if (!(opt->tilt >= 0.0 && opt->tilt <= 89.0 * M_PI / 180.0))
+        return biref_fail(msg, msg_len, "tilt %g deg: expected 0 to 89", opt->tilt * 180.0 / M_PI);
     const int oblique = opt->tilt > 0.0;
     const int W = opt->width, H = opt->height, k = opt->supersample;
     const double x0 = f->frame[0], sx = (f->frame[1] - f->frame[0]) / W;

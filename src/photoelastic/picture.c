@@ -5,6 +5,18 @@
 
 #include "biref/photoelastic.h"
 #include "error.h"
+#include "photoelastic/shade_internal.h"
+
+/* One sample of the tilted plate: the closest uniaxial slab (biref_pe_slab_best) on the general
+ * path, white light through the integrator it. */
+static biref_status oblique_shade(const biref_pe_setup *s, const biref_integrator *it, const biref_pe_principal *p,
+                                  double theta, double c[3])
+{
+    const biref_slab slab = biref_pe_slab_best(&s->material, s->thickness, s->eta_i, p);
+    biref_slab_state st;
+    biref_status r = biref_slab_prepare(&slab, theta, &st);
+    return r != BIREF_OK ? r : biref_pe_shade_state(s, it, &st, c);
+}
 
 biref_status biref_pe_render(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_field *f,
                              const biref_pe_image_opts *opt, float *xyz, char *msg, size_t msg_len)
@@ -29,6 +41,10 @@ biref_status biref_pe_render(const biref_pe_setup *s, const biref_spectral *sp, 
     /* Outside the material the polariscope is seen without a specimen. */
     const double bg = biref_pe_polariscope_background(&s->pol);
     const int threads = opt->threads > 0 ? opt->threads : omp_get_max_threads();
+    /* Tilted white light goes through the expansion integrator, made once for the picture. */
+    biref_integrator *it = NULL;
+    if (oblique && !mono && biref_pe_expansion_integrator(sp, &it) != BIREF_OK)
+        return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
 
     /* Every pixel is a pure function of its position, so the picture does not depend on the
      * thread count or the schedule. */
@@ -47,7 +63,7 @@ biref_status biref_pe_render(const biref_pe_setup *s, const biref_spectral *sp, 
                         biref_pe_principal_of(&st, &p);
                         if (!oblique)
                             biref_pe_shade(s, sp, &p, c);
-                        else if (biref_pe_shade_oblique(s, sp, &p, opt->tilt, c) != BIREF_OK)
+                        else if (oblique_shade(s, it, &p, opt->tilt, c) != BIREF_OK)
                             c[0] = c[1] = c[2] = NAN; /* cannot happen for a checked tilt; shows as black */
                     } else {
                         c[0] = c[1] = c[2] = bg;
@@ -58,5 +74,6 @@ biref_status biref_pe_render(const biref_pe_setup *s, const biref_spectral *sp, 
             for (int m = 0; m < 3; m++) px[m] = (float)(acc[m] * inv * tint[m]);
         }
     }
+    biref_integrator_destroy(it);
     return BIREF_OK;
 }

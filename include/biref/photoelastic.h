@@ -255,11 +255,13 @@ BIREF_API biref_status biref_pe_shade_integrated(const biref_pe_setup *s, const 
 
 typedef struct {
     int width, height;  /* pixels; the frame is mapped with square pixels if the caller chose so */
-    int supersample;    /* k x k samples per pixel (box filter), 1..8 */
+    int supersample;    /* k x k samples per pixel (box filter), 1..BIREF_PE_MAX_SUPERSAMPLE */
     int threads;        /* OpenMP threads, 0 = default */
     double tint[3];     /* mono only: XYZ the intensity multiplies (white E = (1,1,1)) */
     double tilt;        /* 0: normal view (fast path); else biref_pe_shade_oblique at this angle (rad) */
 } biref_pe_image_opts;
+
+#define BIREF_PE_MAX_SUPERSAMPLE 64
 
 /* Renders field f seen through setup s: XYZ floats (3 per pixel, row-major, top row = frame's
  * ymax), white E = (1,1,1); the frame (plate coordinates) fills the image, so with a tilt the
@@ -268,6 +270,14 @@ typedef struct {
  * [0, 89 deg]. */
 BIREF_API biref_status biref_pe_render(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_field *f,
                                        const biref_pe_image_opts *opt, float *xyz, char *msg, size_t msg_len);
+
+/* The same picture with each sample's fringes averaged over its footprint in retardation (the
+ * retardation's change to the next sample; docs/ANTIALIASING.md, "Photoelastic pictures"): no
+ * moire where the fringes crowd, at one sample per pixel. Normal view only (a tilt renders as
+ * biref_pe_render). */
+BIREF_API biref_status biref_pe_render_prefiltered(const biref_pe_setup *s, const biref_spectral *sp,
+                                                   const biref_pe_field *f, const biref_pe_image_opts *opt, float *xyz,
+                                                   char *msg, size_t msg_len);
 
 /* ------------------------------------------------------------------------ */
 /* Nodes from a finite-element export                                        */

@@ -110,7 +110,8 @@ BIREF_API void biref_expansion_opts_default(biref_expansion_opts *o);
  * paths beyond are added incoherently in closed form. Detected intensity for incident coherency
  * C and analyzer P (NULL = none), which = BIREF_TRANSMISSION or BIREF_REFLECTION. *order_used
  * (the pair order) may be NULL. No allocation; about 250 KB of stack per call (threads created
- * with small stacks need at least 512 KB). */
+ * with small stacks need at least 512 KB). BIREF_ERR_INVALID for options outside their domain
+ * (biref_integrator_create says which), BIREF_ERR_ILLCOND for a non-finite result. */
 BIREF_API biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
                                                           const biref_complex C[2][2], const biref_complex P[2][2],
                                                           const biref_expansion_opts *opts, double xyz[3], int *order_used);

@@ -36,7 +36,7 @@ static void random_slab(test_rng *rng, int k, biref_slab *s, double *theta)
 static void test_eligibility(void)
 {
     biref_spectral *sp = NULL;
-    CHECK(biref_spectral_create(NULL, &sp) == BIREF_OK);
+    CHECK(biref_spectral_create(NULL, &sp, NULL, 0) == BIREF_OK);
     test_rng rng = {0x9ac4e7u};
     int eligible = 0, tir = 0, coherent = 0;
     for (int k = 0; k < (quick ? 400 : 4000); k++) {
@@ -65,7 +65,7 @@ static void test_eligibility(void)
 static void test_kernels_vs_scalar(void)
 {
     biref_spectral *sp = NULL;
-    CHECK(biref_spectral_create(NULL, &sp) == BIREF_OK);
+    CHECK(biref_spectral_create(NULL, &sp, NULL, 0) == BIREF_OK);
     enum { N = 203 }; /* not a multiple of the lane count: spare lanes are exercised */
     static biref_slab_state states[N];
     static biref_packet_job jobs[4 * N];
@@ -113,7 +113,7 @@ static void test_kernels_vs_scalar(void)
 static void test_hit_kernels_vs_scalar(void)
 {
     biref_spectral *sp = NULL;
-    CHECK(biref_spectral_create(NULL, &sp) == BIREF_OK);
+    CHECK(biref_spectral_create(NULL, &sp, NULL, 0) == BIREF_OK);
     enum { N = 1001 };
     static biref_packet_hit hits[N];
     static biref_slab_state states[N];

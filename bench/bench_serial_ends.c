@@ -44,7 +44,7 @@ static int run_step(const ends *e, int step)
     char msg[512];
     if (step == 0) {
         biref_spectral *sp = NULL;
-        biref_status s = biref_spectral_create(NULL, &sp);
+        biref_status s = biref_spectral_create(NULL, &sp, NULL, 0);
         biref_spectral_destroy(sp);
         return s == BIREF_OK;
     }

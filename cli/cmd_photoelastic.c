@@ -142,7 +142,7 @@ static const char *const KIND_NAMES[] = {"disk", "hole", "beam", "grid", "nodes"
 static int mono_tint(double lambda, double tint[3])
 {
     biref_cmf_band band;
-    if (biref_cmf_band_init(&band, BIREF_CMF_CIE1931, 380.0, 780.0) != BIREF_OK) return -1;
+    if (biref_cmf_band_init(&band, BIREF_CMF_CIE1931, 380.0, 780.0, NULL, 0) != BIREF_OK) return -1;
     double lam[3], rgb[3];
     biref_cmf_band_eval(&band, lambda, lam);
     biref_xyz_to_linear_srgb(lam, rgb);
@@ -476,8 +476,9 @@ int cmd_photoelastic(int argc, char **argv)
     for (int i = 0; i < 3; i++) io.tint[i] *= exposure;
     const char *inputs[3] = {grid_path, ext.nodes_path, ext.boundary_path};
     if (out && (rc = cli_check_output(CMD, out, inputs, 3))) goto done;
-    if (light == BIREF_PE_WHITE && biref_spectral_create(NULL, &sp) != BIREF_OK) {
-        cli_error(CMD, "cannot create the spectral tables");
+    char why[BIREF_MSG_SIZE];
+    if (light == BIREF_PE_WHITE && biref_spectral_create(NULL, &sp, why, sizeof why) != BIREF_OK) {
+        cli_error(CMD, "cannot create the spectral tables: %s", why);
         rc = CLI_EXIT_FAIL;
         goto done;
     }
@@ -503,8 +504,8 @@ int cmd_photoelastic(int argc, char **argv)
             goto done;
         }
         double t0 = biref_wall_seconds();
-        if (biref_pe_render(&setup, sp, &field, &io, xyz) != BIREF_OK) {
-            cli_error(CMD, "rendering failed");
+        if (biref_pe_render(&setup, sp, &field, &io, xyz, why, sizeof why) != BIREF_OK) {
+            cli_error(CMD, "%s", why);
             rc = CLI_EXIT_FAIL;
             goto done;
         }

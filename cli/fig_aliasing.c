@@ -94,18 +94,19 @@ static double render_pe(biref_pe_light_kind light, biref_antialias aa, int K, in
     biref_spectral *sp = NULL;
     if (biref_pe_field_disk(&f, 25e-3, s.thickness, 500.0, msg, sizeof msg) != BIREF_OK)
         return cli_error(CMD, "disk: %s", msg), -1.0;
-    if (biref_spectral_create(NULL, &sp) != BIREF_OK) return cli_error(CMD, "cannot create the spectral tables"), -1.0;
+    if (biref_spectral_create(NULL, &sp, msg, sizeof msg) != BIREF_OK)
+        return cli_error(CMD, "cannot create the spectral tables: %s", msg), -1.0;
     const double pitch = div * (f.frame[1] - f.frame[0]) / 512.0, top = 25e-3 - 1e-3;
     f.frame[0] = -0.5 * W * pitch, f.frame[1] = 0.5 * W * pitch;
     f.frame[2] = top - H * pitch, f.frame[3] = top;
     biref_pe_image_opts io = {W, H, K, threads, {1, 1, 1}, 0.0};
     fprintf(stderr, "biref figure: aliasing: photoelastic %dx%d, %dx%d samples\n", W, H, K, K);
     double t0 = biref_wall_seconds();
-    biref_status st = aa == BIREF_ANTIALIAS_PREFILTER ? biref_pe_render_prefiltered(&s, sp, &f, &io, xyz)
-                                                      : biref_pe_render(&s, sp, &f, &io, xyz);
+    biref_status st = aa == BIREF_ANTIALIAS_PREFILTER ? biref_pe_render_prefiltered(&s, sp, &f, &io, xyz, msg, sizeof msg)
+                                                      : biref_pe_render(&s, sp, &f, &io, xyz, msg, sizeof msg);
     double t = biref_wall_seconds() - t0;
     biref_spectral_destroy(sp);
-    if (st != BIREF_OK) return cli_error(CMD, "photoelastic picture failed: %s", biref_status_string(st)), -1.0;
+    if (st != BIREF_OK) return cli_error(CMD, "photoelastic picture: %s", msg), -1.0;
     return t;
 }
 

@@ -76,7 +76,7 @@ static void blocks_equal_scalar_jones_on_every_path(void)
 static void spectra_equal_per_wavelength_sums(void)
 {
     biref_spectral *sp = NULL;
-    CHECK(biref_spectral_create(NULL, &sp) == BIREF_OK);
+    CHECK(biref_spectral_create(NULL, &sp, NULL, 0) == BIREF_OK);
     if (!sp) return;
     static const int SAMPLES[] = {1, 3, 8, 31, 33, 100};
     const double complex C[2][2] = {{0.6, 0.1 + 0.2 * I}, {0.1 - 0.2 * I, 0.4}};
@@ -85,7 +85,7 @@ static void spectra_equal_per_wavelength_sums(void)
     int bad = 0, compared = 0;
     for (size_t s = 0; s < sizeof SAMPLES / sizeof SAMPLES[0]; s++) {
         biref_numeric_plan *plan = NULL;
-        CHECK(biref_numeric_plan_create(sp, SAMPLES[s], &plan) == BIREF_OK);
+        CHECK(biref_numeric_plan_create(sp, SAMPLES[s], &plan, NULL, 0) == BIREF_OK);
         if (!plan) continue;
         for (int i = 0; i < 60; i++) {
             biref_slab_state st;

@@ -89,7 +89,7 @@ static float *disk_picture(const biref_pe_setup *s, int W, double scale, int K, 
     biref_pe_image_opts io = {W, W, K, 0, {1, 1, 1}, tilt};
     float *xyz = malloc((size_t)W * W * 3 * sizeof *xyz);
     if (!xyz) return NULL;
-    biref_status st = prefilter ? biref_pe_render_prefiltered(s, sp, &f, &io, xyz) : biref_pe_render(s, sp, &f, &io, xyz);
+    biref_status st = prefilter ? biref_pe_render_prefiltered(s, sp, &f, &io, xyz, NULL, 0) : biref_pe_render(s, sp, &f, &io, xyz, NULL, 0);
     if (st != BIREF_OK) {
         free(xyz);
         return NULL;
@@ -145,7 +145,7 @@ static void tilted_view_is_not_prefiltered(void)
 
 int main(int argc, char **argv)
 {
-    if (biref_spectral_create(NULL, &sp) != BIREF_OK || biref_phase_prefilter_create(sp, &pf) != BIREF_OK) return 1;
+    if (biref_spectral_create(NULL, &sp, NULL, 0) != BIREF_OK || biref_phase_prefilter_create(sp, &pf) != BIREF_OK) return 1;
     static const test_case cases[] = {
         {"zero_width_is_the_point_shading", zero_width_is_the_point_shading},
         {"white_box_matches_quadrature", white_box_matches_quadrature},

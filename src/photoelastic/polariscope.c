@@ -6,6 +6,7 @@
 
 #include "biref/photoelastic.h"
 #include "photoelastic/pe_footprint.h"
+#include "photoelastic/shade_internal.h"
 
 biref_status biref_pe_polariscope_custom(const double stokes[4], const double complex P[2][2],
                                          biref_pe_polariscope *out)
@@ -203,62 +204,25 @@ static double detect(const biref_pe_polariscope *pol, const biref_jones *J)
     return creal(sum);
 }
 
-biref_status biref_pe_shade_general(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p,
-                                    int jitter, double span_nm, double xyz[3])
-{
-    biref_slab slab = biref_pe_slab_at(&s->material, s->thickness, s->eta_i, p);
-    biref_slab_state st;
-    biref_status r;
-    if (s->light == BIREF_PE_WHITE) {
-        if (!sp) return BIREF_ERR_INVALID;
-        if ((r = biref_slab_prepare(&slab, 0.0, &st)) != BIREF_OK) return r;
-        biref_expansion_opts opts;
-        biref_expansion_opts_default(&opts);
-        return biref_spectrum_expansion_polarized(sp, &st, BIREF_TRANSMISSION, s->pol.C, s->pol.P, &opts, xyz, NULL);
-    }
-    if (jitter < 1) jitter = 1;
-    double sum = 0.0;
-    const double h0 = slab.thickness_nm;
-    for (int k = 0; k < jitter; k++) {
-        slab.thickness_nm = jitter == 1 ? h0 : h0 + span_nm * ((k + 0.5) / jitter - 0.5);
-        if ((r = biref_slab_prepare(&slab, 0.0, &st)) != BIREF_OK) return r;
-        biref_jones T;
-        biref_slab_jones_at(&st, s->lambda_nm, &T, NULL);
-        sum += detect(&s->pol, &T);
-    }
-    xyz[0] = xyz[1] = xyz[2] = sum / jitter;
-    return BIREF_OK;
-}
-
 /* Transmission paths to this order for the monochromatic oblique case: order n carries the
  * intensity factor (internal reflectance)^(2n) ~ 0.05^(2n) in air, so stopping after order 2
  * leaves ~1e-8 of the intensity. */
 #define PE_OBLIQUE_ORDER 2
 #define PE_OBLIQUE_PATHS 42 /* 2 + 8 + 32 */
 
-biref_status biref_pe_shade_oblique(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p,
-                                    double theta, double xyz[3])
+/* Monochromatic light on the prepared plate: the transmission paths to PE_OBLIQUE_ORDER, each
+ * order's paths summed coherently and the orders in intensity (docs, "Coherence"). */
+static biref_status mono_paths(const biref_pe_setup *s, const biref_slab_state *st, double xyz[3])
 {
-    biref_status r = biref_theta_check(theta, NULL, 0);
-    if (r != BIREF_OK) return r;
-    biref_slab slab = biref_pe_slab_best(&s->material, s->thickness, s->eta_i, p);
-    biref_slab_state st;
-    if ((r = biref_slab_prepare(&slab, theta, &st)) != BIREF_OK) return r;
-    if (s->light == BIREF_PE_WHITE) {
-        if (!sp) return BIREF_ERR_INVALID;
-        biref_expansion_opts opts;
-        biref_expansion_opts_default(&opts);
-        return biref_spectrum_expansion_polarized(sp, &st, BIREF_TRANSMISSION, s->pol.C, s->pol.P, &opts, xyz, NULL);
-    }
     biref_path paths[PE_OBLIQUE_PATHS];
-    size_t n = biref_slab_paths(&st, BIREF_TRANSMISSION, PE_OBLIQUE_ORDER, paths, PE_OBLIQUE_PATHS);
+    size_t n = biref_slab_paths(st, BIREF_TRANSMISSION, PE_OBLIQUE_ORDER, paths, PE_OBLIQUE_PATHS);
     if (n == 0) return BIREF_ERR_INVALID;
     const double k = 2.0 * M_PI / s->lambda_nm;
     /* A path's phase is the product of its legs' phases (its optical path is the sum of the
      * legs'), so powers of the four leg phases replace one complex exponential per path. */
     double complex pw[4][PE_OBLIQUE_ORDER + 2]; /* [o down, e down, o up, e up][power] */
-    const double complex leg[4] = {cexp(I * k * st.opl_down[0]), cexp(I * k * st.opl_down[1]),
-                                   cexp(I * k * st.opl_up[0]), cexp(I * k * st.opl_up[1])};
+    const double complex leg[4] = {cexp(I * k * st->opl_down[0]), cexp(I * k * st->opl_down[1]),
+                                   cexp(I * k * st->opl_up[0]), cexp(I * k * st->opl_up[1])};
     for (int l = 0; l < 4; l++) {
         pw[l][0] = 1.0;
         for (int e = 1; e < PE_OBLIQUE_ORDER + 2; e++) pw[l][e] = pw[l][e - 1] * leg[l];
@@ -281,14 +245,61 @@ biref_status biref_pe_shade_oblique(const biref_pe_setup *s, const biref_spectra
     return BIREF_OK;
 }
 
-biref_status biref_pe_shade_numeric(const biref_pe_setup *s, const biref_numeric_plan *plan,
-                                    const biref_pe_principal *p, double xyz[3])
+biref_status biref_pe_shade_state(const biref_pe_setup *s, const biref_integrator *it, const biref_slab_state *st,
+                                  double xyz[3])
 {
-    if (s->light != BIREF_PE_WHITE || !plan) return BIREF_ERR_INVALID;
+    if (s->light != BIREF_PE_WHITE) return mono_paths(s, st, xyz);
+    if (!it) return BIREF_ERR_INVALID;
+    biref_light light;
+    biref_pe_light(&s->pol, &light);
+    biref_integration res;
+    biref_status r = biref_integrate(it, st, BIREF_SIDE_TRANSMISSION, &light, &res);
+    if (r != BIREF_OK) return r;
+    for (int j = 0; j < 3; j++) xyz[j] = res.T[j];
+    return BIREF_OK;
+}
+
+biref_status biref_pe_shade_general(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p,
+                                    int jitter, double span_nm, double xyz[3])
+{
     biref_slab slab = biref_pe_slab_at(&s->material, s->thickness, s->eta_i, p);
     biref_slab_state st;
-    biref_status r = biref_slab_prepare(&slab, 0.0, &st);
-    if (r != BIREF_OK) return r;
-    biref_spectrum_numeric_polarized(plan, &st, BIREF_TRANSMISSION, s->pol.C, s->pol.P, xyz);
+    biref_status r;
+    if (s->light == BIREF_PE_WHITE) {
+        if (!sp) return BIREF_ERR_INVALID;
+        if ((r = biref_slab_prepare(&slab, 0.0, &st)) != BIREF_OK) return r;
+        biref_integrator *it = NULL;
+        if ((r = biref_pe_expansion_integrator(sp, &it)) != BIREF_OK) return r;
+        r = biref_pe_shade_state(s, it, &st, xyz);
+        biref_integrator_destroy(it);
+        return r;
+    }
+    if (jitter < 1) jitter = 1;
+    double sum = 0.0;
+    const double h0 = slab.thickness_nm;
+    for (int k = 0; k < jitter; k++) {
+        slab.thickness_nm = jitter == 1 ? h0 : h0 + span_nm * ((k + 0.5) / jitter - 0.5);
+        if ((r = biref_slab_prepare(&slab, 0.0, &st)) != BIREF_OK) return r;
+        biref_jones T;
+        biref_slab_jones_at(&st, s->lambda_nm, &T, NULL);
+        sum += detect(&s->pol, &T);
+    }
+    xyz[0] = xyz[1] = xyz[2] = sum / jitter;
     return BIREF_OK;
+}
+
+biref_status biref_pe_shade_oblique(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p,
+                                    double theta, double xyz[3])
+{
+    biref_status r = biref_theta_check(theta, NULL, 0);
+    if (r != BIREF_OK) return r;
+    biref_slab slab = biref_pe_slab_best(&s->material, s->thickness, s->eta_i, p);
+    biref_slab_state st;
+    if ((r = biref_slab_prepare(&slab, theta, &st)) != BIREF_OK) return r;
+    if (s->light != BIREF_PE_WHITE) return biref_pe_shade_state(s, NULL, &st, xyz);
+    biref_integrator *it = NULL;
+    if (!sp || (r = biref_pe_expansion_integrator(sp, &it)) != BIREF_OK) return sp ? r : BIREF_ERR_INVALID;
+    r = biref_pe_shade_state(s, it, &st, xyz);
+    biref_integrator_destroy(it);
+    return r;
 }

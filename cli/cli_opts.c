@@ -7,6 +7,14 @@
 
 enum { CODE_BASE = 1000, CODE_HELP = 999 };
 
+/* Taken out of the command line by main before the command parses it (cli_progress_options). */
+static const cli_opt PROGRESS_OPTS[] = {
+    CLI_FLAG("progress", 0, 0, "progress from the start, also when stderr is not a terminal"),
+    CLI_FLAG("quiet", 'q', 0,
+             "no progress on stderr (default: a bar on a terminal, otherwise a\n"
+             "line every few seconds once the job has run 2 s)"),
+};
+
 /* The table entry an old spelling stands for (itself for a current name). */
 static size_t current_index(const cli_command_spec *c, size_t i)
 {
@@ -143,7 +151,8 @@ void cli_opts_help(const cli_command_spec *c, FILE *f)
         else
             help_entry(o, column, f);
     }
-    const cli_opt help = {"help", 'h', CLI_OPT_FLAG, NULL, "this help", 0, 0, 0, 0, NULL};
+    for (size_t i = 0; i < (c->progress ? CLI_OPTS_COUNT(PROGRESS_OPTS) : 0); i++) help_entry(&PROGRESS_OPTS[i], column, f);
+    const cli_opt help = CLI_FLAG("help", 'h', 0, "this help");
     help_entry(&help, column, f);
     if (any_old) {
         fputs("\nOld spellings, accepted for one more release:\n", f);
@@ -158,7 +167,6 @@ void cli_opts_help(const cli_command_spec *c, FILE *f)
         }
     }
     fputc('\n', f);
-    if (c->more_help) c->more_help(f);
     if (c->epilog) fputs(c->epilog, f);
 }
 
@@ -190,6 +198,13 @@ void cli_opts_markdown(const cli_command_spec *c, FILE *f)
         markdown_cell(label, f);
         fputs("` | ", f);
         markdown_cell(o->help, f);
+        fputs(" |\n", f);
+    }
+    for (size_t i = 0; i < (c->progress ? CLI_OPTS_COUNT(PROGRESS_OPTS) : 0); i++) {
+        char label[160];
+        option_label(&PROGRESS_OPTS[i], label, sizeof label);
+        fprintf(f, "| `%s` | ", label);
+        markdown_cell(PROGRESS_OPTS[i].help, f);
         fputs(" |\n", f);
     }
     fputs("| `-h, --help` | this help |\n\n", f);

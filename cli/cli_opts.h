@@ -37,8 +37,9 @@ typedef struct cli_command_spec {
     int column;           /* column of the help texts (default 23) */
     /* Parses a CLI_OPT_CUSTOM value; returns 0, or -1 after printing one error. */
     int (*handle)(void *args, int code, const char *arg);
-    /* Extra help printed after the options, before the epilog (may be NULL). */
-    void (*more_help)(FILE *f);
+    /* 1: a long job that reports progress on stderr; --help and docs/CLI.md then list the
+     * --progress and -q/--quiet that main takes out of every command line (cli_progress.h). */
+    int progress;
 } cli_command_spec;
 
 enum { CLI_MAX_OPTS = 96 };

@@ -161,7 +161,6 @@ static const cli_opt OPTS[] = {
     CLI_CUSTOM("cmf", "C", OPT_CMF, "cie1931 (default) or wyman2013"),
     CLI_CUSTOM("range-nm", "MIN,MAX", OPT_RANGE, "integration band (default 380,700)"),
     CLI_INT("threads", "T", F(threads), 1, 1024, "OpenMP threads (default: all cores)"),
-    CLI_FLAG("progress", 0, F(progress), "progress on stderr also when it is not a terminal"),
     CLI_STRING("csv", 0, "FILE", F(csv_path), "per-angle statistics of every method and material"),
     CLI_STRING("markdown", 0, "FILE", F(md_path), "write the tables to FILE"),
     CLI_FLAG("json", 0, F(json), "machine-readable output on stdout"),
@@ -189,7 +188,7 @@ const cli_command_spec CLI_ACCURACY = {
     NULL,
     25,
     handle,
-    NULL,
+    1,
 };
 
 /* Returns 0 to run the study, 1 after --help, -1 on bad usage (one error line printed). */

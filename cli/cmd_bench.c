@@ -152,23 +152,25 @@ const cli_command_spec CLI_BENCH = {
     "changes when other jobs share the cores.\n",
     0,
     handle,
-    NULL,
+    1,
 };
 
 /* Times each method on the scene with n_threads threads. Returns a CLI exit code. */
-static int time_methods(const biref_scene *scene, bench_method *m, int n_methods, int n_threads, double max_seconds,
-                        int verbose)
+static int time_methods(const biref_scene *scene, bench_method *m, int n_methods, int n_threads, double max_seconds)
 {
     const int W = scene->camera.width, H = scene->camera.height;
     float *xyz = malloc((size_t)W * H * 3 * sizeof *xyz);
     if (!xyz) return cli_error(CMD, "out of memory for a %dx%d frame", W, H), CLI_EXIT_FAIL;
     int rc = CLI_EXIT_OK;
+    biref_progress_bar bar;
+    biref_progress_bar_init(&bar, stderr, 1, "bench");
     for (int i = 0; i < n_methods && !rc; i++) {
         bench_method *b = &m[i];
         b->opt.threads = n_threads;
         biref_renderer *r = NULL;
         if ((rc = cli_renderer_create(CMD, scene, &b->opt, &r))) break;
-        if (verbose) fprintf(stderr, "timing %s ...\n", b->name);
+        biref_progress_bar_note(&bar, b->name);
+        biref_progress_bar_update(&bar, i, n_methods);
         /* Probe one row per thread, then spend the budget on as many evenly spaced rows as fit
          * (the whole frame if it fits). */
         int rows = 0, k = n_threads < H ? n_threads : H;
@@ -190,6 +192,8 @@ static int time_methods(const biref_scene *scene, bench_method *m, int n_methods
         b->ms = b->extrapolated ? b->cpu_ms / (n_threads < cores ? n_threads : cores) : 1e3 * t * H / rows;
         biref_renderer_destroy(r);
     }
+    if (!rc) biref_progress_bar_update(&bar, n_methods, n_methods);
+    biref_progress_bar_finish(&bar);
     free(xyz);
     return rc;
 }
@@ -294,7 +298,7 @@ int cmd_bench(int argc, char **argv)
     if (rc) return rc;
     const int W = scene.camera.width, H = scene.camera.height;
     const int n_threads = a.threads > 0 ? (int)a.threads : omp_get_max_threads();
-    if ((rc = time_methods(&scene, m, n_methods, n_threads, a.max_seconds, !a.json && isatty(fileno(stderr)))))
+    if ((rc = time_methods(&scene, m, n_methods, n_threads, a.max_seconds)))
         return rc;
     bench_gl g = {0, 0, ""};
     if (a.gl && (rc = cli_gl_bench(CMD, &scene, (int)a.frames, &g.gpu_ms, &g.wall_ms, g.device, sizeof g.device)))

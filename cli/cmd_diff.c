@@ -44,7 +44,7 @@ const cli_command_spec CLI_DIFF = {
     "I/O failure, 2 on bad usage or unreadable/mismatched images.\n",
     0,
     NULL,
-    NULL,
+    0,
 };
 
 /* The map with the scale's legend below it (the canvas at least wide enough for the legend). */

@@ -67,7 +67,9 @@ static double render_rows(const fig_ctx *c, const biref_scene *sc, const method_
     if (biref_renderer_create(sc, &opt, &r, msg, sizeof msg) != BIREF_OK)
         return cli_error(FIG_CMD, "%s: %s", ms->name, msg), -1.0;
     biref_progress_bar bar;
-    biref_progress_bar_init(&bar, stderr, isatty(2), label);
+    char what[48];
+    snprintf(what, sizeof what, "figure %s", label);
+    biref_progress_bar_init(&bar, stderr, 1, what);
     double t0 = biref_wall_seconds();
     biref_status s = biref_renderer_render(r, y0, sc->camera.height, step, xyz, biref_progress_bar_update, &bar, NULL);
     double t = biref_wall_seconds() - t0;
@@ -345,7 +347,7 @@ const cli_command_spec CLI_FIGURE = {
     NULL,
     0,
     NULL,
-    NULL,
+    1,
 };
 
 int cmd_figure(int argc, char **argv)

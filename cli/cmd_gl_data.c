@@ -36,7 +36,7 @@ const cli_command_spec CLI_GL_DATA = {
     NULL,
     0,
     NULL,
-    NULL,
+    0,
 };
 
 static void add_uniform(void *user, const char *name, int comps, int count, const float *v)

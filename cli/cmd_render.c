@@ -24,7 +24,7 @@ enum { OPT_METHOD = 1, OPT_BACKEND, OPT_ORDER, OPT_TOLERANCE, OPT_ANTIALIAS };
 typedef struct {
     const char *out, *pfm, *scene_path;
     long width, height, threads, samples, supersample;
-    int json, quiet, gl, antialias;
+    int json, gl, antialias;
     biref_render_options opt;
 } render_args;
 
@@ -78,7 +78,6 @@ static const cli_opt OPTS[] = {
             "OpenMP threads (default: all cores); the image does not depend on T"),
     CLI_STRING("pfm", 0, "FILE", F(pfm), "also write linear sRGB floats as a PFM"),
     CLI_FLAG("json", 0, F(json), "print {width, height, method, samples, ms, mean_srgb, ...} on stdout"),
-    CLI_FLAG("quiet", 'q', F(quiet), "no progress bar (it is shown only when stderr is a terminal)"),
     {.name = "samples", .kind = CLI_OPT_INT, .value = "N", .offset = F(samples), .lo = 1, .hi = 65536,
      .old_of = "spectral-samples"},
 };
@@ -97,7 +96,7 @@ const cli_command_spec CLI_RENDER = {
     "Example:\n  biref render examples/fig9a.json -o fig9a.png --method numeric --spectral-samples 128\n",
     0,
     handle,
-    NULL,
+    1,
 };
 
 /* Options that only make sense together. Returns 0, 1 after --help, or -1 (one error printed). */
@@ -155,7 +154,7 @@ static int render_xyz(const render_args *a, const biref_scene *scene, float *xyz
     /* The GL back-end handles world-fixed polarizers too (docs/GPU.md): no CPU renderer then. */
     if (!a->gl && (rc = cli_renderer_create(CMD, scene, &a->opt, &r))) return rc;
     biref_progress_bar bar;
-    biref_progress_bar_init(&bar, stderr, !a->gl && !a->quiet && isatty(fileno(stderr)), "render");
+    biref_progress_bar_init(&bar, stderr, !a->gl, "render");
     double t0 = biref_wall_seconds();
     if (a->gl && (rc = cli_gl_render(CMD, scene, xyz, &res->stats, &res->gpu_ms, res->device, sizeof res->device)))
         return rc;

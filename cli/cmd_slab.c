@@ -57,7 +57,7 @@ const cli_command_spec CLI_SLAB = {
     "             --thickness-mm 1.15 --theta-deg 30 --lambda-nm 550 --json\n",
     0,
     handle,
-    NULL,
+    0,
 };
 
 static const char *const MODE_NAMES[4] = {"o_down", "e_down", "o_up", "e_up"};

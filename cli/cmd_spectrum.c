@@ -181,7 +181,7 @@ const cli_command_spec CLI_SPECTRUM = {
     "                --thickness-um 20 --theta-deg 30 --polarization 0.02,0.98 --analyzer s\n",
     0,
     handle,
-    NULL,
+    0,
 };
 
 /* Options that only make sense together. Returns 0 or -1 (one error line printed). */

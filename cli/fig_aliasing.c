@@ -58,7 +58,9 @@ static double render_rows(const biref_scene *sc, biref_antialias aa, int K, int 
     char msg[256];
     if (biref_renderer_create(sc, &opt, &r, msg, sizeof msg) != BIREF_OK) return cli_error(CMD, "%s", msg), -1.0;
     biref_progress_bar bar;
-    biref_progress_bar_init(&bar, stderr, isatty(2), label);
+    char what[48];
+    snprintf(what, sizeof what, "figure %s", label);
+    biref_progress_bar_init(&bar, stderr, 1, what);
     double t0 = biref_wall_seconds();
     biref_status s = biref_renderer_render(r, y0, y1, 1, xyz, biref_progress_bar_update, &bar, NULL);
     double t = biref_wall_seconds() - t0;

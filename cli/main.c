@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cli_progress.h"
 #include "commands.h"
 
 static const struct {
@@ -72,7 +73,11 @@ int main(int argc, char **argv)
         return 0;
     }
     for (size_t i = 0; i < N_COMMANDS; i++)
-        if (!strcmp(argv[1], commands[i].name)) return commands[i].run(argc - 1, argv + 1);
+        if (!strcmp(argv[1], commands[i].name)) {
+            /* --progress and --quiet mean the same for every command: taken here, once. */
+            const int n = cli_progress_options(argc - 1, argv + 1);
+            return commands[i].run(n, argv + 1);
+        }
     fprintf(stderr, "biref: error: unknown command '%s' (see biref --help)\n", argv[1]);
     return 2;
 }

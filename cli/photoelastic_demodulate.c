@@ -94,7 +94,7 @@ const cli_command_spec CLI_PHOTOELASTIC_DEMODULATE = {
     "  biref photoelastic demodulate steps/disk-{1,2,3,4,5,6}.pfm --zero-order 2,2 -o maps\n",
     0,
     handle,
-    NULL,
+    0,
 };
 
 static const char *const MAP_NAMES[5] = {"isoclinic", "phase-wrapped", "fringe-order", "modulation", "background"};

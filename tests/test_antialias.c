@@ -8,7 +8,8 @@
 
 #include "biref/biref.h"
 #include "spectral/phase_prefilter.h"
-#include "test_util.h"
+#include "test_cases.h"
+#include "test_render_util.h"
 
 /* Box average of the point look-ups by a fine midpoint rule. */
 static void box_by_quadrature(const biref_spectral *sp, double d, double w, double c[3], double s[3])
@@ -22,14 +23,12 @@ static void box_by_quadrature(const biref_spectral *sp, double d, double w, doub
     }
 }
 
-static void test_box_table(void)
+static biref_spectral *sp;
+static biref_phase_prefilter *pf;
+
+/* Near zero, straddling it, mid-table, straddling the table's end (1e5 nm), beyond it. */
+static void box_average_matches_quadrature_of_point_table(void)
 {
-    biref_spectral *sp = NULL;
-    biref_phase_prefilter *pf = NULL;
-    CHECK(biref_spectral_create(NULL, &sp) == BIREF_OK);
-    CHECK(biref_phase_prefilter_create(sp, &pf) == BIREF_OK);
-    if (!sp || !pf) return;
-    /* Near zero, straddling it, mid-table, straddling the table's end (1e5 nm), beyond it. */
     const double D[] = {0.0, 120.0, -700.0, 2500.0, 31000.0, 99990.0, 2.5e5};
     const double W[] = {0.5, 40.0, 300.0, 1500.0, 9000.0};
     double worst = 0.0;
@@ -42,7 +41,11 @@ static void test_box_table(void)
         }
     printf("box average vs quadrature of the point table: max |error| %.2e\n", worst);
     CHECK(worst < 2e-5);
-    /* A zero width is the point look-up exactly; a tiny one agrees with it. */
+}
+
+/* A zero width is the point look-up exactly; a tiny one agrees with it. */
+static void zero_width_box_is_the_point_lookup(void)
+{
     double c0[3], s0[3], c1[3], s1[3];
     biref_spectral_phase_integrals(sp, 1234.5, c0, s0);
     biref_phase_integrals_box(pf, 1234.5, 0.0, c1, s1);
@@ -52,11 +55,14 @@ static void test_box_table(void)
         CHECK_NEAR(c1[j], c0[j], 1e-5);
         CHECK_NEAR(s1[j], s0[j], 1e-5);
     }
-    /* A footprint much wider than a fringe averages the oscillation away. */
+}
+
+/* A footprint much wider than a fringe averages the oscillation away. */
+static void wide_box_averages_the_fringes_away(void)
+{
+    double c1[3], s1[3];
     biref_phase_integrals_box(pf, 3000.0, 20000.0, c1, s1);
     for (int j = 0; j < 3; j++) CHECK(fabs(c1[j]) < 0.02 && fabs(s1[j]) < 0.02);
-    biref_phase_prefilter_destroy(pf);
-    biref_spectral_destroy(sp);
 }
 
 static float *render(const biref_scene *sc, biref_method method, biref_antialias aa, int K)
@@ -66,20 +72,7 @@ static float *render(const biref_scene *sc, biref_method method, biref_antialias
     opt.method = method;
     opt.antialias = aa;
     opt.supersample = K;
-    biref_renderer *r = NULL;
-    char msg[256];
-    if (biref_renderer_create(sc, &opt, &r, msg, sizeof msg) != BIREF_OK) {
-        fprintf(stderr, "renderer: %s\n", msg);
-        return NULL;
-    }
-    size_t n = (size_t)sc->camera.width * sc->camera.height;
-    float *xyz = malloc(n * 3 * sizeof *xyz);
-    if (xyz && biref_render_image(r, xyz, NULL, NULL, NULL) != BIREF_OK) {
-        free(xyz);
-        xyz = NULL;
-    }
-    biref_renderer_destroy(r);
-    return xyz;
+    return test_render_xyz(sc, &opt, NULL);
 }
 
 /* Mean over rows y0 ... H - 1 (W pixels each). */
@@ -98,17 +91,10 @@ static double mean_de(const float *a, const float *b, int W, int H, int y0)
 /* The thick slab at a grazing view: fringes narrower than a pixel towards the sides. Measured
  * below the slab's far edge (the top 30 % of the frame): the prefilter removes the aliasing of the
  * phases, not that of geometric edges, which only super-sampling cures. */
-static void test_aliasing_scene(biref_method method, int W, int H, int K_ref)
+static void aliasing_scene(biref_method method, int W, int H, int K_ref)
 {
     biref_scene sc;
-    char msg[256];
-    if (biref_scene_load("examples/aliasing/thick_grazing.json", &sc, msg, sizeof msg) != BIREF_OK) {
-        fprintf(stderr, "%s\n", msg);
-        CHECK(0);
-        return;
-    }
-    sc.camera.width = W;
-    sc.camera.height = H;
+    if (test_load_scene("examples/aliasing/thick_grazing.json", &sc, W, H)) return;
     float *ref = render(&sc, method, BIREF_ANTIALIAS_NONE, K_ref);
     float *plain = render(&sc, method, BIREF_ANTIALIAS_NONE, 1);
     float *pre = render(&sc, method, BIREF_ANTIALIAS_PREFILTER, 1);
@@ -126,8 +112,9 @@ static void test_aliasing_scene(biref_method method, int W, int H, int K_ref)
     free(pre);
 }
 
-/* The prefilter needs the phase table: numeric methods refuse it. */
-static void test_options(void)
+/* The prefilter needs the phase table: numeric methods refuse it; the super-sampling factor is
+ * bounded. */
+static void prefilter_and_supersample_options_are_checked(void)
 {
     biref_scene sc;
     char msg[256];
@@ -146,13 +133,32 @@ static void test_options(void)
     CHECK(biref_renderer_create(&sc, &opt, &r, msg, sizeof msg) == BIREF_ERR_INVALID && !r);
 }
 
-int main(void)
+/* BIREF_TEST_QUICK (the sanitizer run): smaller images and references. */
+static void prefilter_reduces_aliasing_analytic(void)
 {
-    /* BIREF_TEST_QUICK (the sanitizer run): smaller images and references. */
-    const int quick = getenv("BIREF_TEST_QUICK") != NULL;
-    test_box_table();
-    test_options();
-    test_aliasing_scene(BIREF_METHOD_ANALYTIC, quick ? 48 : 64, quick ? 27 : 36, quick ? 8 : 12);
-    test_aliasing_scene(BIREF_METHOD_EXPANSION, quick ? 24 : 32, quick ? 14 : 18, quick ? 6 : 8);
-    return test_report("test_antialias");
+    const int quick = test_quick();
+    aliasing_scene(BIREF_METHOD_ANALYTIC, quick ? 48 : 64, quick ? 27 : 36, quick ? 8 : 12);
+}
+
+static void prefilter_reduces_aliasing_expansion(void)
+{
+    const int quick = test_quick();
+    aliasing_scene(BIREF_METHOD_EXPANSION, quick ? 24 : 32, quick ? 14 : 18, quick ? 6 : 8);
+}
+
+int main(int argc, char **argv)
+{
+    if (biref_spectral_create(NULL, &sp) != BIREF_OK || biref_phase_prefilter_create(sp, &pf) != BIREF_OK) return 1;
+    static const test_case cases[] = {
+        {"box_average_matches_quadrature_of_point_table", box_average_matches_quadrature_of_point_table},
+        {"zero_width_box_is_the_point_lookup", zero_width_box_is_the_point_lookup},
+        {"wide_box_averages_the_fringes_away", wide_box_averages_the_fringes_away},
+        {"prefilter_and_supersample_options_are_checked", prefilter_and_supersample_options_are_checked},
+        {"prefilter_reduces_aliasing_analytic", prefilter_reduces_aliasing_analytic},
+        {"prefilter_reduces_aliasing_expansion", prefilter_reduces_aliasing_expansion},
+    };
+    int rc = test_run_cases("test_antialias", cases, TEST_COUNT(cases), argc, argv);
+    biref_phase_prefilter_destroy(pf);
+    biref_spectral_destroy(sp);
+    return rc;
 }

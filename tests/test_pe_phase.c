@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "biref/photoelastic.h"
-#include "test_util.h"
+#include "test_cases.h"
 
 /* The state passed by a quarter-wave plate (fast axis xi) and a linear analyzer (beta), by Mueller
  * calculus: the analyzer's row (1, cos 2b, sin 2b, 0) times the plate's Mueller matrix. The sign
@@ -26,7 +26,8 @@ static void mueller_state(double xi, double beta, double s[4])
     s[3] = -sg * sn * a1 + sg * c * a2;
 }
 
-static void test_settings(void)
+/* Six and four steps exist, five do not; the six analyzer states are the Poincare sphere's poles. */
+static void steps_are_the_poles_of_the_poincare_sphere(void)
 {
     biref_pe_step st[6];
     CHECK(biref_pe_phase_steps(6, st) == 6);
@@ -43,7 +44,11 @@ static void test_settings(void)
             CHECK_NEAR(m[i + 1], want[k][i], 1e-12);
         }
     }
-    /* Steps 1 and 2 are the dark and light circular polariscope of biref_pe_polariscope_make. */
+}
+
+/* Steps 1 and 2 are the dark and light circular polariscope of biref_pe_polariscope_make. */
+static void first_steps_are_the_dark_and_light_circular_polariscopes(void)
+{
     biref_pe_polariscope a, b;
     biref_pe_polariscope_stepped(0, M_PI / 4, &a);
     biref_pe_polariscope_make(BIREF_PE_CIRCULAR, BIREF_PE_DARK, 0, &b);
@@ -57,7 +62,7 @@ static void test_settings(void)
 
 /* I = 1/2 (1 + a3 cos d + sin d (a2 cos 2phi - a1 sin 2phi)) against the Jones calculus: the fast
  * path and the general slab path (eq. 17 Jones matrix), index-matched (no reflections). */
-static void test_formulas(void)
+static void intensity_formulas_match_jones_calculus(void)
 {
     test_rng r = {777};
     biref_pe_step st[6];
@@ -157,7 +162,7 @@ static void round_trip(int n, double ib, double ia, double *worst_N, double *wor
     free(bg);
 }
 
-static void test_round_trip(void)
+static void round_trip_six_steps(void)
 {
     double wn, wp;
     round_trip(6, 0.0, 1.0, &wn, &wp);
@@ -165,13 +170,20 @@ static void test_round_trip(void)
            "0.9 R, >= 0.3 R from the loads)\n", wn, wp);
     CHECK(wn <= 0.02);
     CHECK(wp <= 1.0);
+}
+
+/* Four steps, with a background Ib = 0.1 and a camera gain Ia = 0.7. */
+static void round_trip_four_steps_with_background_and_gain(void)
+{
+    double wn, wp;
     round_trip(4, 0.1, 0.7, &wn, &wp);
     printf("round trip, 4 steps, Ib = 0.1, Ia x 0.7: |N - closed form| <= %.4f, isoclinic within %.3f deg\n", wn, wp);
     CHECK(wn <= 0.02);
     CHECK(wp <= 1.0);
 }
 
-static void test_errors(void)
+/* Five steps, images without modulation, a reference point outside the images. */
+static void demodulation_refuses_bad_input(void)
 {
     char msg[256];
     float a[4] = {0, 0, 0, 0};
@@ -187,11 +199,15 @@ static void test_errors(void)
     CHECK(strstr(msg, "outside") != NULL);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
-    test_settings();
-    test_formulas();
-    test_round_trip();
-    test_errors();
-    return test_report("test_pe_phase");
+    static const test_case cases[] = {
+        {"steps_are_the_poles_of_the_poincare_sphere", steps_are_the_poles_of_the_poincare_sphere},
+        {"first_steps_are_the_dark_and_light_circular_polariscopes", first_steps_are_the_dark_and_light_circular_polariscopes},
+        {"intensity_formulas_match_jones_calculus", intensity_formulas_match_jones_calculus},
+        {"round_trip_six_steps", round_trip_six_steps},
+        {"round_trip_four_steps_with_background_and_gain", round_trip_four_steps_with_background_and_gain},
+        {"demodulation_refuses_bad_input", demodulation_refuses_bad_input},
+    };
+    return test_run_cases("test_pe_phase", cases, TEST_COUNT(cases), argc, argv);
 }

@@ -12,7 +12,7 @@
 
 #include "biref/biref.h"
 #include "spectral/spectral_internal.h"
-#include "test_util.h"
+#include "test_cases.h"
 
 enum { KIND_THIN, KIND_THICK, KIND_TIR, KIND_AXIS, KIND_GRAZING, N_KINDS };
 static const char *const KIND_NAMES[N_KINDS] = {"thin", "thick", "eta_i > eta", "near axis", "near 90 deg"};
@@ -81,97 +81,80 @@ static double worst_de(const biref_spectrum *a, const biref_spectrum *g)
     return w;
 }
 
-int main(void)
+enum { M_ANALYTIC, M_EXPANSION, M_EXPANSION8, M_NUMERIC32, M_GT, N_M };
+static const char *const NAMES[N_M] = {"analytic", "expansion", "expansion order 8", "numeric-32", "ground truth"};
+
+/* One seeded slab of a kind, its spectra by every method, and a random light and analyzer. */
+typedef struct {
+    int kind;
+    biref_slab s;
+    double theta;
+    biref_slab_state st;
+    biref_spectrum x[N_M];
+    double complex C[2][2], P[2][2];
+} sample;
+
+static biref_spectral *sp;
+static sample *samples;
+static int per_kind, n_samples;
+
+/* The slabs and their spectra, computed once for all cases (the ground truth is the cost). */
+static void compute_samples(void)
 {
-    const int per_kind = getenv("BIREF_TEST_QUICK") ? 40 : 200;
-    biref_spectral *sp = NULL;
-    CHECK(biref_spectral_create(NULL, &sp) == BIREF_OK);
+    if (samples) return;
+    per_kind = test_quick() ? 40 : 200;
+    samples = calloc((size_t)N_KINDS * per_kind, sizeof *samples);
     biref_numeric_plan *gt = NULL, *n32 = NULL;
+    CHECK(samples != NULL);
     CHECK(biref_numeric_plan_create(sp, BIREF_GROUND_TRUTH_SAMPLES, &gt) == BIREF_OK);
     CHECK(biref_numeric_plan_create(sp, 32, &n32) == BIREF_OK);
-    enum { M_ANALYTIC, M_EXPANSION, M_EXPANSION8, M_NUMERIC32, M_GT, N_M };
-    static const char *const NAMES[N_M] = {"analytic", "expansion", "expansion order 8", "numeric-32", "ground truth"};
-    double worst[N_KINDS][N_M] = {{0}}, de_coherent[2] = {0, 0}, worst_polarized = 0, worst_energy = 0;
-    /* dE00 against the ground truth where it is alias-free (d <= 100 um): max, sum, count, count > 1. */
-    double de_max[N_KINDS][2] = {{0}}, de_sum[N_KINDS][2] = {{0}};
-    int de_n[N_KINDS] = {0}, de_over[N_KINDS][2] = {{0}};
-    int coherent_count = 0, evanescent_count = 0;
+    if (!samples || !gt || !n32) goto done;
     test_rng rng = {20261123};
     for (int kind = 0; kind < N_KINDS; kind++)
         for (int t = 0; t < per_kind; t++) {
-            biref_slab s;
-            double theta;
-            random_slab(&rng, kind, &s, &theta);
+            sample *x = &samples[n_samples++];
+            x->kind = kind;
+            random_slab(&rng, kind, &x->s, &x->theta);
             char msg[256];
-            CHECK(biref_slab_check(&s, msg, sizeof msg) == BIREF_OK);
-            biref_slab_state st;
-            CHECK(biref_slab_prepare(&s, theta, &st) == BIREF_OK);
-            evanescent_count += st.total_reflection != 0;
+            CHECK(biref_slab_check(&x->s, msg, sizeof msg) == BIREF_OK);
+            CHECK(biref_slab_prepare(&x->s, x->theta, &x->st) == BIREF_OK);
             biref_expansion_opts o8;
             biref_expansion_opts_default(&o8);
             o8.order = 8;
-            biref_spectrum x[N_M];
-            biref_spectrum_analytic(sp, &st, &x[M_ANALYTIC]);
-            CHECK(biref_spectrum_expansion(sp, &st, NULL, &x[M_EXPANSION]) == BIREF_OK);
-            CHECK(biref_spectrum_expansion(sp, &st, &o8, &x[M_EXPANSION8]) == BIREF_OK);
-            biref_spectrum_numeric(n32, &st, &x[M_NUMERIC32]);
-            biref_spectrum_numeric(gt, &st, &x[M_GT]);
-            for (int m = 0; m < N_M; m++) {
-                double v = violation(&x[m]);
-                worst[kind][m] = fmax(worst[kind][m], v);
-                if (!(v <= 1e-6) && test_failures < 20)
-                    fprintf(stderr, "%s, %s: violation %.3g: eta_o %.4g eta_e %.4g axis (%.4g %.4g %.4g) d %.4g nm eta_i %.4g theta %.4f deg\n",
-                            KIND_NAMES[kind], NAMES[m], v, s.eta_o, s.eta_e, s.axis[0], s.axis[1], s.axis[2],
-                            s.thickness_nm, s.eta_i, theta * 180 / M_PI);
-                CHECK(v <= 1e-6);
-            }
-            /* Any light and analyzer: the detected intensity of unit incident light lies in [0, 1]. */
-            double S[4], xyz[3];
-            double complex C[2][2], P[2][2];
+            biref_spectrum_analytic(sp, &x->st, &x->x[M_ANALYTIC]);
+            CHECK(biref_spectrum_expansion(sp, &x->st, NULL, &x->x[M_EXPANSION]) == BIREF_OK);
+            CHECK(biref_spectrum_expansion(sp, &x->st, &o8, &x->x[M_EXPANSION8]) == BIREF_OK);
+            biref_spectrum_numeric(n32, &x->st, &x->x[M_NUMERIC32]);
+            biref_spectrum_numeric(gt, &x->st, &x->x[M_GT]);
+            double S[4];
             test_random_stokes(&rng, S);
-            CHECK(biref_stokes_to_coherency(S, C) == BIREF_OK);
+            CHECK(biref_stokes_to_coherency(S, x->C) == BIREF_OK);
             if (t % 2)
-                biref_analyzer_linear(test_uniform(&rng, 0, M_PI), P);
+                biref_analyzer_linear(test_uniform(&rng, 0, M_PI), x->P);
             else
-                biref_analyzer_circular(t % 4 ? 1 : -1, P);
-            for (int which = 0; which < 2; which++) {
-                CHECK(biref_spectrum_expansion_polarized(sp, &st, which, (const double complex(*)[2])C,
-                                                         (const double complex(*)[2])P, NULL, xyz, NULL) == BIREF_OK);
-                for (int j = 0; j < 3; j++) {
-                    worst_polarized = fmax(worst_polarized, fmax(-xyz[j], xyz[j] - 1));
-                    CHECK(xyz[j] >= -1e-6 && xyz[j] <= 1 + 1e-6);
-                }
-            }
-            if (s.thickness_nm <= 1e5) {
-                de_n[kind]++;
-                for (int m = 0; m < 2; m++) {
-                    double de = worst_de(&x[m == 0 ? M_ANALYTIC : M_EXPANSION], &x[M_GT]);
-                    de_max[kind][m] = fmax(de_max[kind][m], de);
-                    de_sum[kind][m] += de;
-                    de_over[kind][m] += de > 1;
-                }
-            }
-            /* The energy balance rests on this: the incoherent path energies E of eqs. 20-21 sum to 1
-             * over outputs and directions (each path's |a|^2 is its power fraction), wherever no
-             * evanescent leg couples the faces. */
-            if (!st.total_reflection) {
-                double E[2][2][2][3], H[2][2][3];
-                for (int w = 0; w < 2; w++) biref_analytic_paper_terms(sp, &st, w, E[w], H);
-                for (int i = 0; i < 2; i++)
-                    for (int j = 0; j < 3; j++) {
-                        double sum = E[0][i][0][j] + E[0][i][1][j] + E[1][i][0][j] + E[1][i][1][j];
-                        worst_energy = fmax(worst_energy, fabs(sum - 1));
-                        CHECK_NEAR(sum, 1.0, 1e-9);
-                    }
-            }
-            /* Where the fast methods switch to the exact integral, both agree with the ground
-             * truth (alias-free there: short optical paths). */
-            if (biref_coherent_plan(sp, &st)) {
-                coherent_count++;
-                de_coherent[0] = fmax(de_coherent[0], worst_de(&x[M_ANALYTIC], &x[M_GT]));
-                de_coherent[1] = fmax(de_coherent[1], worst_de(&x[M_EXPANSION], &x[M_GT]));
-            }
+                biref_analyzer_circular(t % 4 ? 1 : -1, x->P);
         }
+done:
+    biref_numeric_plan_destroy(n32);
+    biref_numeric_plan_destroy(gt);
+}
+
+static void every_method_stays_within_physical_bounds(void)
+{
+    compute_samples();
+    double worst[N_KINDS][N_M] = {{0}};
+    for (int k = 0; k < n_samples; k++) {
+        const sample *x = &samples[k];
+        for (int m = 0; m < N_M; m++) {
+            double v = violation(&x->x[m]);
+            worst[x->kind][m] = fmax(worst[x->kind][m], v);
+            if (!(v <= 1e-6) && test_failures < 20)
+                fprintf(stderr, "%s, %s: violation %.3g: eta_o %.4g eta_e %.4g axis (%.4g %.4g %.4g) d %.4g nm eta_i %.4g theta %.4f deg\n",
+                        KIND_NAMES[x->kind], NAMES[m], v, x->s.eta_o, x->s.eta_e, x->s.axis[0], x->s.axis[1],
+                        x->s.axis[2], x->s.thickness_nm, x->s.eta_i, x->theta * 180 / M_PI);
+            CHECK(v <= 1e-6);
+        }
+    }
     printf("largest violation of 0 <= T, R <= 1, sum T + R <= 1 (per input and band):\n%-12s", "");
     for (int m = 0; m < N_M; m++) printf(" %18s", NAMES[m]);
     printf("\n");
@@ -179,6 +162,68 @@ int main(void)
         printf("%-12s", KIND_NAMES[kind]);
         for (int m = 0; m < N_M; m++) printf(" %18.3g", worst[kind][m]);
         printf("\n");
+    }
+}
+
+/* Any light and analyzer: the detected intensity of unit incident light lies in [0, 1]. */
+static void polarized_intensity_stays_within_0_and_1(void)
+{
+    compute_samples();
+    double worst_polarized = 0;
+    for (int k = 0; k < n_samples; k++) {
+        const sample *x = &samples[k];
+        for (int which = 0; which < 2; which++) {
+            double xyz[3];
+            CHECK(biref_spectrum_expansion_polarized(sp, &x->st, which, (const double complex(*)[2])x->C,
+                                                     (const double complex(*)[2])x->P, NULL, xyz, NULL) == BIREF_OK);
+            for (int j = 0; j < 3; j++) {
+                worst_polarized = fmax(worst_polarized, fmax(-xyz[j], xyz[j] - 1));
+                CHECK(xyz[j] >= -1e-6 && xyz[j] <= 1 + 1e-6);
+            }
+        }
+    }
+    printf("expansion, random Stokes input and analyzer: largest violation of 0 <= I <= 1: %.3g\n", worst_polarized);
+}
+
+/* The energy balance rests on this: the incoherent path energies E of eqs. 20-21 sum to 1 over
+ * outputs and directions (each path's |a|^2 is its power fraction), wherever no evanescent leg
+ * couples the faces. */
+static void path_energies_sum_to_one_without_total_reflection(void)
+{
+    compute_samples();
+    double worst_energy = 0;
+    for (int k = 0; k < n_samples; k++) {
+        const sample *x = &samples[k];
+        if (x->st.total_reflection) continue;
+        double E[2][2][2][3], H[2][2][3];
+        for (int w = 0; w < 2; w++) biref_analytic_paper_terms(sp, &x->st, w, E[w], H);
+        for (int i = 0; i < 2; i++)
+            for (int j = 0; j < 3; j++) {
+                double sum = E[0][i][0][j] + E[0][i][1][j] + E[1][i][0][j] + E[1][i][1][j];
+                worst_energy = fmax(worst_energy, fabs(sum - 1));
+                CHECK_NEAR(sum, 1.0, 1e-9);
+            }
+    }
+    printf("incoherent path energies E (no total reflection): largest |sum_out (E_T + E_R) - 1| %.3g\n", worst_energy);
+}
+
+/* The analytic method and the expansion against the ground truth where it is alias-free
+ * (d <= 100 um): max, sum, count, count > 1, within the documented envelope. */
+static void analytic_and_expansion_within_documented_envelope(void)
+{
+    compute_samples();
+    double de_max[N_KINDS][2] = {{0}}, de_sum[N_KINDS][2] = {{0}};
+    int de_n[N_KINDS] = {0}, de_over[N_KINDS][2] = {{0}};
+    for (int k = 0; k < n_samples; k++) {
+        const sample *x = &samples[k];
+        if (x->s.thickness_nm > 1e5) continue;
+        de_n[x->kind]++;
+        for (int m = 0; m < 2; m++) {
+            double de = worst_de(&x->x[m == 0 ? M_ANALYTIC : M_EXPANSION], &x->x[M_GT]);
+            de_max[x->kind][m] = fmax(de_max[x->kind][m], de);
+            de_sum[x->kind][m] += de;
+            de_over[x->kind][m] += de > 1;
+        }
     }
     printf("dE00 against the ground truth (d <= 100 um; unpolarized open and s-in/p-out crossed, T and R):\n"
            "%-12s %5s %30s %30s\n", "", "n", "analytic: mean / max / % > 1", "expansion: mean / max / % > 1");
@@ -200,16 +245,42 @@ int main(void)
             CHECK(de_max[kind][m] <= env_max[kind][m]);
             CHECK(de_sum[kind][m] <= env_mean[kind][m] * de_n[kind]);
         }
-    printf("incoherent path energies E (no total reflection): largest |sum_out (E_T + E_R) - 1| %.3g\n", worst_energy);
-    printf("expansion, random Stokes input and analyzer: largest violation of 0 <= I <= 1: %.3g\n", worst_polarized);
+}
+
+/* Where the fast methods switch to the exact integral, both agree with the ground truth
+ * (alias-free there: short optical paths). */
+static void coherent_regime_matches_ground_truth(void)
+{
+    compute_samples();
+    double de_coherent[2] = {0, 0};
+    int coherent_count = 0, evanescent_count = 0;
+    for (int k = 0; k < n_samples; k++) {
+        const sample *x = &samples[k];
+        evanescent_count += x->st.total_reflection != 0;
+        if (!biref_coherent_plan(sp, &x->st)) continue;
+        coherent_count++;
+        de_coherent[0] = fmax(de_coherent[0], worst_de(&x->x[M_ANALYTIC], &x->x[M_GT]));
+        de_coherent[1] = fmax(de_coherent[1], worst_de(&x->x[M_EXPANSION], &x->x[M_GT]));
+    }
     printf("coherent regime (%d of %d slabs, %d with evanescent modes): dE00 vs ground truth, analytic %.3g, "
            "expansion %.3g\n",
            coherent_count, N_KINDS * per_kind, evanescent_count, de_coherent[0], de_coherent[1]);
     CHECK(coherent_count > 0 && evanescent_count > 0);
     CHECK(de_coherent[0] <= 0.05 && de_coherent[1] <= 0.05);
+}
 
-    biref_numeric_plan_destroy(n32);
-    biref_numeric_plan_destroy(gt);
+int main(int argc, char **argv)
+{
+    if (biref_spectral_create(NULL, &sp) != BIREF_OK) return 1;
+    static const test_case cases[] = {
+        {"every_method_stays_within_physical_bounds", every_method_stays_within_physical_bounds},
+        {"polarized_intensity_stays_within_0_and_1", polarized_intensity_stays_within_0_and_1},
+        {"path_energies_sum_to_one_without_total_reflection", path_energies_sum_to_one_without_total_reflection},
+        {"analytic_and_expansion_within_documented_envelope", analytic_and_expansion_within_documented_envelope},
+        {"coherent_regime_matches_ground_truth", coherent_regime_matches_ground_truth},
+    };
+    int rc = test_run_cases("test_physical_bounds", cases, TEST_COUNT(cases), argc, argv);
+    free(samples);
     biref_spectral_destroy(sp);
-    return test_report("test_physical_bounds");
+    return rc;
 }

@@ -149,11 +149,91 @@ static biref_status axis_fit(const row *rows, long n, int col, double lo, double
     return BIREF_OK;
 }
 
-biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **out, char *msg, size_t msg_len)
+/* The header line: which file column holds each named column. */
+static biref_status parse_header(const char *fb[], const char *fe[], int nf, long line, int col_of[NCOL], char *msg,
+                                 size_t msg_len)
 {
-    if (!out) return biref_fail(msg, msg_len, "no output");
-    *out = NULL;
-    if (!text) return biref_fail(msg, msg_len, "no text");
+    int seen[NCOL] = {0};
+    if (nf > NCOL)
+        return biref_fail(msg, msg_len, "line %ld: header has %d columns; expected the 5 columns " HEADER_TEXT, line, nf);
+    for (int i = 0; i < nf; i++) {
+        int which = -1;
+        /* Accept quoted column names ("x_mm"), as some spreadsheets write them. */
+        if (fe[i] - fb[i] >= 2 && *fb[i] == '"' && fe[i][-1] == '"') {
+            fb[i]++;
+            fe[i]--;
+        }
+        for (int c = 0; c < NCOL; c++)
+            if ((size_t)(fe[i] - fb[i]) == strlen(COL_NAMES[c]) && !memcmp(fb[i], COL_NAMES[c], strlen(COL_NAMES[c])))
+                which = c;
+        if (which < 0) {
+            char *endp = NULL;
+            (void)strtod(fb[i], &endp);
+            if (i == 0 && endp != fb[i])
+                return biref_fail(msg, msg_len, "line %ld: expected the header " HEADER_TEXT " before the data", line);
+            return biref_fail(msg, msg_len, "line %ld: unknown column '%.*s' in the header (expected " HEADER_TEXT ")",
+                              line, (int)(fe[i] - fb[i]) > 40 ? 40 : (int)(fe[i] - fb[i]), fb[i]);
+        }
+        if (seen[which])
+            return biref_fail(msg, msg_len, "line %ld: column %s appears twice in the header", line, COL_NAMES[which]);
+        seen[which] = 1;
+        col_of[which] = i;
+    }
+    for (int c = 0; c < NCOL; c++)
+        if (!seen[c])
+            return biref_fail(msg, msg_len, "line %ld: the header lacks column %s (expected " HEADER_TEXT ")", line,
+                              COL_NAMES[c]);
+    return BIREF_OK;
+}
+
+/* One data row's five numbers, each finite and within GRID_MAX_VALUE. */
+static biref_status parse_row(const char *const fb[], const char *const fe[], const int col_of[NCOL], long line, row *r,
+                              char *msg, size_t msg_len)
+{
+    r->line = line;
+    for (int c = 0; c < NCOL; c++) {
+        const char *s = fb[col_of[c]], *e = fe[col_of[c]];
+        int w = (int)(e - s) > 40 ? 40 : (int)(e - s);
+        if (s == e) return biref_fail(msg, msg_len, "line %ld, column %s: empty field", line, COL_NAMES[c]);
+        char buf[64];
+        if ((size_t)(e - s) >= sizeof buf)
+            return biref_fail(msg, msg_len, "line %ld, column %s: not a number: '%.*s...'", line, COL_NAMES[c], w, s);
+        memcpy(buf, s, (size_t)(e - s));
+        buf[e - s] = '\0';
+        char *endp = NULL;
+        errno = 0;
+        double v = strtod(buf, &endp);
+        if (endp == buf || *endp != '\0')
+            return biref_fail(msg, msg_len, "line %ld, column %s: not a number: '%s'", line, COL_NAMES[c], buf);
+        if (!isfinite(v) || errno == ERANGE)
+            return biref_fail(msg, msg_len, "line %ld, column %s: not a finite number: '%s'", line, COL_NAMES[c], buf);
+        /* A kilometre and a terapascal are far beyond any plate in a polariscope; within
+         * them, spans, spacings and fringe orders stay finite. */
+        if (fabs(v) > GRID_MAX_VALUE)
+            return biref_fail(msg, msg_len, "line %ld, column %s: %s is out of range (at most %g in magnitude)", line,
+                              COL_NAMES[c], buf, GRID_MAX_VALUE);
+        r->v[c] = v;
+    }
+    return BIREF_OK;
+}
+
+/* Room for one more row (doubling), refusing files of more than MAX_ROWS rows. */
+static biref_status reserve_row(row **rows, long *cap, long n, long line, char *msg, size_t msg_len)
+{
+    if (n < *cap) return BIREF_OK;
+    if (n >= MAX_ROWS) return biref_fail(msg, msg_len, "line %ld: more than %ld rows", line, MAX_ROWS);
+    long ncap = *cap ? 2 * *cap : 1024;
+    row *nr = realloc(*rows, (size_t)ncap * sizeof **rows);
+    if (!nr) return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
+    *rows = nr;
+    *cap = ncap;
+    return BIREF_OK;
+}
+
+/* Reads the header and the data rows (comments and blank lines skipped) into *rows_out;
+ * at least 4 rows. */
+static biref_status read_rows(const char *text, size_t len, row **rows_out, long *n_out, char *msg, size_t msg_len)
+{
     int col_of[NCOL]; /* position in the file of each named column */
     int have_header = 0;
     long line = 0, cap = 0, n = 0;
@@ -180,112 +260,73 @@ biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **o
         const char *fb[NCOL], *fe[NCOL];
         int nf = split(b, le, fb, fe, NCOL);
         if (!have_header) {
-            int seen[NCOL] = {0};
-            if (nf > NCOL) {
-                st = biref_fail(msg, msg_len, "line %ld: header has %d columns; expected the 5 columns " HEADER_TEXT, line,
-                           nf);
-                break;
-            }
-            for (int i = 0; i < nf && st == BIREF_OK; i++) {
-                int which = -1;
-                /* Accept quoted column names ("x_mm"), as some spreadsheets write them. */
-                if (fe[i] - fb[i] >= 2 && *fb[i] == '"' && fe[i][-1] == '"') {
-                    fb[i]++;
-                    fe[i]--;
-                }
-                for (int c = 0; c < NCOL; c++)
-                    if ((size_t)(fe[i] - fb[i]) == strlen(COL_NAMES[c]) && !memcmp(fb[i], COL_NAMES[c], strlen(COL_NAMES[c])))
-                        which = c;
-                if (which < 0) {
-                    char *endp = NULL;
-                    (void)strtod(fb[i], &endp);
-                    if (i == 0 && endp != fb[i])
-                        st = biref_fail(msg, msg_len, "line %ld: expected the header " HEADER_TEXT " before the data",
-                                   line);
-                    else
-                        st = biref_fail(msg, msg_len, "line %ld: unknown column '%.*s' in the header (expected " HEADER_TEXT
-                                   ")", line, (int)(fe[i] - fb[i]) > 40 ? 40 : (int)(fe[i] - fb[i]), fb[i]);
-                } else if (seen[which]) {
-                    st = biref_fail(msg, msg_len, "line %ld: column %s appears twice in the header", line, COL_NAMES[which]);
-                } else {
-                    seen[which] = 1;
-                    col_of[which] = i;
-                }
-            }
-            for (int c = 0; c < NCOL && st == BIREF_OK; c++)
-                if (!seen[c])
-                    st = biref_fail(msg, msg_len, "line %ld: the header lacks column %s (expected " HEADER_TEXT ")", line,
-                               COL_NAMES[c]);
+            st = parse_header(fb, fe, nf, line, col_of, msg, msg_len);
             have_header = 1;
-            continue;
-        }
-        if (nf != NCOL) {
+        } else if (nf != NCOL) {
             if (!complete && nf < NCOL)
-                st = biref_fail(msg, msg_len, "line %ld: truncated row (%d of %d fields, and the file ends there)", line, nf,
-                           NCOL);
+                st = biref_fail(msg, msg_len, "line %ld: truncated row (%d of %d fields, and the file ends there)", line,
+                                nf, NCOL);
             else
                 st = biref_fail(msg, msg_len, "line %ld: expected %d comma-separated fields, got %d", line, NCOL, nf);
-            break;
+        } else {
+            st = reserve_row(&rows, &cap, n, line, msg, msg_len);
+            if (st == BIREF_OK) st = parse_row(fb, fe, col_of, line, &rows[n++], msg, msg_len);
         }
-        if (n == cap) {
-            if (n >= MAX_ROWS) {
-                st = biref_fail(msg, msg_len, "line %ld: more than %ld rows", line, MAX_ROWS);
-                break;
-            }
-            long ncap = cap ? 2 * cap : 1024;
-            row *nr = realloc(rows, (size_t)ncap * sizeof *rows);
-            if (!nr) {
-                st = BIREF_ERR_NOMEM;
-                if (msg && msg_len) snprintf(msg, msg_len, "out of memory");
-                break;
-            }
-            rows = nr;
-            cap = ncap;
-        }
-        row *r = &rows[n];
-        r->line = line;
-        for (int c = 0; c < NCOL && st == BIREF_OK; c++) {
-            const char *s = fb[col_of[c]], *e = fe[col_of[c]];
-            int w = (int)(e - s) > 40 ? 40 : (int)(e - s);
-            if (s == e) {
-                st = biref_fail(msg, msg_len, "line %ld, column %s: empty field", line, COL_NAMES[c]);
-                break;
-            }
-            char buf[64];
-            if ((size_t)(e - s) >= sizeof buf) {
-                st = biref_fail(msg, msg_len, "line %ld, column %s: not a number: '%.*s...'", line, COL_NAMES[c], w, s);
-                break;
-            }
-            memcpy(buf, s, (size_t)(e - s));
-            buf[e - s] = '\0';
-            char *endp = NULL;
-            errno = 0;
-            double v = strtod(buf, &endp);
-            if (endp == buf || *endp != '\0')
-                st = biref_fail(msg, msg_len, "line %ld, column %s: not a number: '%s'", line, COL_NAMES[c], buf);
-            else if (!isfinite(v) || errno == ERANGE)
-                st = biref_fail(msg, msg_len, "line %ld, column %s: not a finite number: '%s'", line, COL_NAMES[c], buf);
-            /* A kilometre and a terapascal are far beyond any plate in a polariscope; within
-             * them, spans, spacings and fringe orders stay finite. */
-            else if (fabs(v) > GRID_MAX_VALUE)
-                st = biref_fail(msg, msg_len, "line %ld, column %s: %s is out of range (at most %g in magnitude)", line,
-                                COL_NAMES[c], buf, GRID_MAX_VALUE);
-            r->v[c] = v;
-        }
-        n++;
     }
     if (st == BIREF_OK && !have_header)
         st = biref_fail(msg, msg_len, "empty file: expected the header " HEADER_TEXT " and at least 4 rows");
     if (st == BIREF_OK && n < 4)
         st = biref_fail(msg, msg_len, "line %ld: the file ends after %ld data row%s; a grid needs at least 2 x 2 nodes",
-                   line, n, n == 1 ? "" : "s");
+                        line, n, n == 1 ? "" : "s");
     if (st != BIREF_OK) {
         free(rows);
         return st;
     }
+    *rows_out = rows;
+    *n_out = n;
+    return BIREF_OK;
+}
 
-    /* Regularity: the x values and the y values each on an evenly spaced lattice, and every
-     * (x, y) node present exactly once. */
+/* Puts every row's stress (MPa -> Pa) at its node of the lattice lo + (ix dxm, iy dym); every
+ * node exactly once. */
+static biref_status place_nodes(biref_pe_grid *g, const row *rows, long n, const double lo[2], double dxm, double dym,
+                                char *msg, size_t msg_len)
+{
+    if ((long)g->nx * g->ny > MAX_ROWS)
+        return biref_fail(msg, msg_len, "the grid would have %ld nodes (more than %ld)", (long)g->nx * g->ny, MAX_ROWS);
+    g->v = malloc((size_t)g->nx * g->ny * 3 * sizeof *g->v);
+    long *owner = malloc((size_t)g->nx * g->ny * sizeof *owner);
+    if (!g->v || !owner) {
+        free(owner);
+        return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
+    }
+    biref_status st = BIREF_OK;
+    for (long k = 0; k < (long)g->nx * g->ny; k++) owner[k] = 0;
+    for (long i = 0; i < n && st == BIREF_OK; i++) {
+        long ix = lround((rows[i].v[COL_X] - lo[0]) / dxm), iy = lround((rows[i].v[COL_Y] - lo[1]) / dym);
+        long k = iy * g->nx + ix;
+        if (owner[k]) {
+            st = biref_fail(msg, msg_len, "line %ld: node x_mm = %g, y_mm = %g repeats line %ld", rows[i].line,
+                            rows[i].v[COL_X], rows[i].v[COL_Y], owner[k]);
+            break;
+        }
+        owner[k] = rows[i].line;
+        g->v[3 * k + 0] = rows[i].v[COL_SXX] * 1e6;
+        g->v[3 * k + 1] = rows[i].v[COL_SYY] * 1e6;
+        g->v[3 * k + 2] = rows[i].v[COL_TXY] * 1e6;
+    }
+    for (long k = 0; k < (long)g->nx * g->ny && st == BIREF_OK; k++)
+        if (!owner[k])
+            st = biref_fail(msg, msg_len, "irregular grid: no row for the node x_mm = %g, y_mm = %g (%d x %d nodes)",
+                            lo[0] + (double)(k % g->nx) * dxm, lo[1] + (double)(k / g->nx) * dym, g->nx, g->ny);
+    free(owner);
+    return st;
+}
+
+/* Regularity: the x values and the y values each on an evenly spaced lattice, and every
+ * (x, y) node present exactly once. Fills g (sizes in metres). */
+static biref_status build_grid(biref_pe_grid *g, const row *rows, long n, char *msg, size_t msg_len)
+{
     double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
     for (long i = 0; i < n; i++)
         for (int c = 0; c < 2; c++) {
@@ -293,63 +334,37 @@ biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **o
             hi[c] = fmax(hi[c], rows[i].v[c]);
         }
     double *tmp = malloc((size_t)n * 2 * sizeof *tmp);
-    biref_pe_grid *g = calloc(1, sizeof *g);
-    if (!tmp || !g) {
-        free(tmp);
-        free(g);
-        free(rows);
-        if (msg && msg_len) snprintf(msg, msg_len, "out of memory");
-        return BIREF_ERR_NOMEM;
-    }
+    if (!tmp) return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
     double dxm = 0, dym = 0;
-    st = axis_fit(rows, n, COL_X, lo[0], hi[0], tmp, &g->nx, &dxm, msg, msg_len);
+    biref_status st = axis_fit(rows, n, COL_X, lo[0], hi[0], tmp, &g->nx, &dxm, msg, msg_len);
     if (st == BIREF_OK) st = axis_fit(rows, n, COL_Y, lo[1], hi[1], tmp, &g->ny, &dym, msg, msg_len);
     free(tmp);
-    long *owner = NULL;
-    if (st == BIREF_OK) {
-        if ((long)g->nx * g->ny > MAX_ROWS) {
-            st = biref_fail(msg, msg_len, "the grid would have %ld nodes (more than %ld)", (long)g->nx * g->ny, MAX_ROWS);
-        } else {
-            g->v = malloc((size_t)g->nx * g->ny * 3 * sizeof *g->v);
-            owner = malloc((size_t)g->nx * g->ny * sizeof *owner);
-            if (!g->v || !owner) {
-                st = BIREF_ERR_NOMEM;
-                if (msg && msg_len) snprintf(msg, msg_len, "out of memory");
-            }
-        }
-    }
-    if (st == BIREF_OK) {
-        for (long k = 0; k < (long)g->nx * g->ny; k++) owner[k] = 0;
-        for (long i = 0; i < n && st == BIREF_OK; i++) {
-            long ix = lround((rows[i].v[COL_X] - lo[0]) / dxm), iy = lround((rows[i].v[COL_Y] - lo[1]) / dym);
-            long k = iy * g->nx + ix;
-            if (owner[k]) {
-                st = biref_fail(msg, msg_len, "line %ld: node x_mm = %g, y_mm = %g repeats line %ld", rows[i].line,
-                           rows[i].v[COL_X], rows[i].v[COL_Y], owner[k]);
-                break;
-            }
-            owner[k] = rows[i].line;
-            /* MPa -> Pa. */
-            g->v[3 * k + 0] = rows[i].v[COL_SXX] * 1e6;
-            g->v[3 * k + 1] = rows[i].v[COL_SYY] * 1e6;
-            g->v[3 * k + 2] = rows[i].v[COL_TXY] * 1e6;
-        }
-        for (long k = 0; k < (long)g->nx * g->ny && st == BIREF_OK; k++)
-            if (!owner[k])
-                st = biref_fail(msg, msg_len, "irregular grid: no row for the node x_mm = %g, y_mm = %g (%d x %d nodes)",
-                           lo[0] + (double)(k % g->nx) * dxm, lo[1] + (double)(k / g->nx) * dym, g->nx, g->ny);
-    }
-    free(owner);
-    free(rows);
-    if (st != BIREF_OK) {
-        biref_pe_grid_destroy(g);
-        return st;
-    }
+    if (st == BIREF_OK) st = place_nodes(g, rows, n, lo, dxm, dym, msg, msg_len);
+    if (st != BIREF_OK) return st;
     /* mm -> m. */
     g->x0 = lo[0] * 1e-3;
     g->dx = dxm * 1e-3;
     g->y0 = lo[1] * 1e-3;
     g->dy = dym * 1e-3;
+    return BIREF_OK;
+}
+
+biref_status biref_pe_grid_parse(const char *text, size_t len, biref_pe_grid **out, char *msg, size_t msg_len)
+{
+    if (!out) return biref_fail(msg, msg_len, "no output");
+    *out = NULL;
+    if (!text) return biref_fail(msg, msg_len, "no text");
+    row *rows = NULL;
+    long n = 0;
+    biref_status st = read_rows(text, len, &rows, &n, msg, msg_len);
+    if (st != BIREF_OK) return st;
+    biref_pe_grid *g = calloc(1, sizeof *g);
+    st = g ? build_grid(g, rows, n, msg, msg_len) : biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
+    free(rows);
+    if (st != BIREF_OK) {
+        biref_pe_grid_destroy(g);
+        return st;
+    }
     *out = g;
     return BIREF_OK;
 }

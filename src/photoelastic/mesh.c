@@ -209,22 +209,58 @@ static size_t merge_coincident(node_row *r, size_t n, double tol)
     return out;
 }
 
-static biref_status triangulate(biref_pe_mesh *m, char *msg, size_t msg_len)
+/* The Delaunay triangles qhull found (pts: the nodes in qhull's coordinates), each with the
+ * inverse of its edge matrix; zero-area triangles (Qt's) are dropped. */
+static biref_status collect_triangles(qhT *qh, biref_pe_mesh *m, double area_tol, char *msg, size_t msg_len)
 {
     const size_t n = m->n;
-    if (n < 3) return biref_fail(msg, msg_len, "%zu distinct node%s: a triangulation needs at least 3", n, n == 1 ? "" : "s");
-    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-    for (size_t i = 0; i < n; i++)
-        for (int c = 0; c < 2; c++) {
-            lo[c] = fmin(lo[c], m->xy[2 * i + c]);
-            hi[c] = fmax(hi[c], m->xy[2 * i + c]);
+    size_t cap = 0;
+    facetT *facet;
+    vertexT *vertex, **vertexp;
+    FORALLfacets {
+        if (!facet->upperdelaunay) cap++;
+    }
+    m->t = malloc((cap ? cap : 1) * sizeof *m->t);
+    if (!m->t) return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
+    FORALLfacets {
+        if (facet->upperdelaunay) continue;
+        int v[3], k = 0, ok = 1;
+        FOREACHvertex_(facet->vertices) {
+            int id = qh_pointid(qh, vertex->point);
+            if (k < 3 && id >= 0 && (size_t)id < n)
+                v[k] = id;
+            else
+                ok = 0;
+            k++;
         }
+        if (!ok || k != 3) continue;
+        const double *p0 = m->xy + 2 * v[0], *p1 = m->xy + 2 * v[1], *p2 = m->xy + 2 * v[2];
+        double ax = p1[0] - p0[0], bx = p2[0] - p0[0], ay = p1[1] - p0[1], by = p2[1] - p0[1];
+        double det = ax * by - bx * ay;
+        if (!(fabs(det) > area_tol)) continue; /* Qt's zero-area triangles */
+        tri *t = &m->t[m->ntri++];
+        t->x0 = p0[0];
+        t->y0 = p0[1];
+        t->a = by / det;
+        t->b = -bx / det;
+        t->c = -ay / det;
+        t->d = ax / det;
+        memcpy(t->v, v, sizeof v);
+    }
+    if (m->ntri == 0) return biref_fail(msg, msg_len, "the nodes do not span an area (all on one line?)");
+    return BIREF_OK;
+}
+
+/* Delaunay triangulation of the nodes (bounding box lo, hi) by qhull. */
+static biref_status delaunay(biref_pe_mesh *m, const double lo[2], const double hi[2], char *msg, size_t msg_len)
+{
+    const size_t n = m->n;
     /* qhull works best on coordinates of order one. */
     const double cx = 0.5 * (lo[0] + hi[0]), cy = 0.5 * (lo[1] + hi[1]);
     const double sc = fmax(hi[0] - lo[0], hi[1] - lo[1]);
     if (!(sc > 0)) return biref_fail(msg, msg_len, "all nodes are at one point");
     coordT *pts = malloc(n * 2 * sizeof *pts);
-    if (!pts) return biref_fail(msg, msg_len, "out of memory"), BIREF_ERR_NOMEM;
+    if (!pts) return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
     for (size_t i = 0; i < n; i++) {
         pts[2 * i] = (m->xy[2 * i] - cx) / sc;
         pts[2 * i + 1] = (m->xy[2 * i + 1] - cy) / sc;
@@ -234,7 +270,7 @@ static biref_status triangulate(biref_pe_mesh *m, char *msg, size_t msg_len)
     FILE *errf = open_memstream(&errbuf, &errlen);
     if (!errf) {
         free(pts);
-        return biref_fail(msg, msg_len, "out of memory"), BIREF_ERR_NOMEM;
+        return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
     }
     qhT qh_qh;
     qhT *qh = &qh_qh;
@@ -243,59 +279,24 @@ static biref_status triangulate(biref_pe_mesh *m, char *msg, size_t msg_len)
      * Qz: a point at infinity, for the cocircular nodes every round part has. */
     char flags[] = "qhull d Qt Qbb Qc Qz Q12";
     int code = qh_new_qhull(qh, 2, (int)n, pts, False, flags, NULL, errf);
-    biref_status st = BIREF_OK;
-    if (code) {
+    biref_status st;
+    if (code)
         st = biref_fail(msg, msg_len, "cannot triangulate the nodes (qhull error %d: do they all lie on one line?)", code);
-    } else {
-        size_t cap = 0;
-        facetT *facet;
-        vertexT *vertex, **vertexp;
-        FORALLfacets {
-            if (!facet->upperdelaunay) cap++;
-        }
-        m->t = malloc((cap ? cap : 1) * sizeof *m->t);
-        if (!m->t) {
-            st = biref_fail(msg, msg_len, "out of memory");
-            st = BIREF_ERR_NOMEM;
-        }
-        const double area_tol = 1e-14 * (hi[0] - lo[0]) * (hi[1] - lo[1]) + 1e-300;
-        FORALLfacets {
-            if (st != BIREF_OK || facet->upperdelaunay) continue;
-            int v[3], k = 0, ok = 1;
-            FOREACHvertex_(facet->vertices) {
-                int id = qh_pointid(qh, vertex->point);
-                if (k < 3 && id >= 0 && (size_t)id < n)
-                    v[k] = id;
-                else
-                    ok = 0;
-                k++;
-            }
-            if (!ok || k != 3) continue;
-            const double *p0 = m->xy + 2 * v[0], *p1 = m->xy + 2 * v[1], *p2 = m->xy + 2 * v[2];
-            double ax = p1[0] - p0[0], bx = p2[0] - p0[0], ay = p1[1] - p0[1], by = p2[1] - p0[1];
-            double det = ax * by - bx * ay;
-            if (!(fabs(det) > area_tol)) continue; /* Qt's zero-area triangles */
-            tri *t = &m->t[m->ntri++];
-            t->x0 = p0[0];
-            t->y0 = p0[1];
-            t->a = by / det;
-            t->b = -bx / det;
-            t->c = -ay / det;
-            t->d = ax / det;
-            memcpy(t->v, v, sizeof v);
-        }
-        if (st == BIREF_OK && m->ntri == 0)
-            st = biref_fail(msg, msg_len, "the nodes do not span an area (all on one line?)");
-    }
+    else
+        st = collect_triangles(qh, m, 1e-14 * (hi[0] - lo[0]) * (hi[1] - lo[1]) + 1e-300, msg, msg_len);
     qh_freeqhull(qh, !qh_ALL);
     int curlong, totlong;
     qh_memfreeshort(qh, &curlong, &totlong);
     fclose(errf);
     free(errbuf);
     free(pts);
-    if (st != BIREF_OK) return st;
+    return st;
+}
 
-    /* Buckets: about two triangles per cell. */
+/* Buckets for the point location: about two triangles per cell of a grid over the box, each
+ * triangle listed in every cell its bounding box touches (CSR). */
+static biref_status bucket_triangles(biref_pe_mesh *m, const double lo[2], const double hi[2], char *msg, size_t msg_len)
+{
     m->box[0] = lo[0];
     m->box[1] = hi[0];
     m->box[2] = lo[1];
@@ -312,7 +313,7 @@ static biref_status triangulate(biref_pe_mesh *m, char *msg, size_t msg_len)
     if (!(m->ch > 0)) m->ch = 1;
     size_t ncell = (size_t)m->gx * m->gy;
     m->cell_start = calloc(ncell + 1, sizeof *m->cell_start);
-    if (!m->cell_start) return biref_fail(msg, msg_len, "out of memory"), BIREF_ERR_NOMEM;
+    if (!m->cell_start) return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
     for (int pass = 0; pass < 2; pass++) {
         size_t *fill = NULL;
         if (pass == 1) {
@@ -321,7 +322,7 @@ static biref_status triangulate(biref_pe_mesh *m, char *msg, size_t msg_len)
             fill = malloc(ncell * sizeof *fill);
             if (!m->cell_tri || !fill) {
                 free(fill);
-                return biref_fail(msg, msg_len, "out of memory"), BIREF_ERR_NOMEM;
+                return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
             }
             memcpy(fill, m->cell_start, ncell * sizeof *fill);
         }
@@ -354,9 +355,150 @@ static biref_status triangulate(biref_pe_mesh *m, char *msg, size_t msg_len)
     return BIREF_OK;
 }
 
+static biref_status triangulate(biref_pe_mesh *m, char *msg, size_t msg_len)
+{
+    const size_t n = m->n;
+    if (n < 3) return biref_fail(msg, msg_len, "%zu distinct node%s: a triangulation needs at least 3", n, n == 1 ? "" : "s");
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (size_t i = 0; i < n; i++)
+        for (int c = 0; c < 2; c++) {
+            lo[c] = fmin(lo[c], m->xy[2 * i + c]);
+            hi[c] = fmax(hi[c], m->xy[2 * i + c]);
+        }
+    biref_status st = delaunay(m, lo, hi, msg, msg_len);
+    if (st != BIREF_OK) return st;
+    return bucket_triangles(m, lo, hi, msg, msg_len);
+}
+
 /* ------------------------------------------------------------------------ */
 /* Node table                                                                */
 /* ------------------------------------------------------------------------ */
+
+/* The header line [b, e): the column of each role (col), its label for messages, the field
+ * delimiter (',' or ';' if present, else blanks) and the column count. */
+static biref_status map_header(const char *b, const char *e, long line, const char *const names[NROLE], int col[NROLE],
+                               char label[NROLE][80], char *delim, int *ncol, char *msg, size_t msg_len)
+{
+    *delim = memchr(b, ',', (size_t)(e - b)) ? ',' : memchr(b, ';', (size_t)(e - b)) ? ';' : ' ';
+    const char *hb[MAX_FIELDS], *he[MAX_FIELDS];
+    *ncol = split_fields(b, e, *delim, hb, he, MAX_FIELDS);
+    if (*ncol > MAX_FIELDS) return biref_fail(msg, msg_len, "line %ld: more than %d columns", line, MAX_FIELDS);
+    for (int r = 0; r < NROLE; r++) {
+        col[r] = -1;
+        column_label(label[r], 80, r, names[r]);
+        for (int i = 0; i < *ncol; i++)
+            if (name_is(hb[i], he[i], names[r])) {
+                if (col[r] >= 0)
+                    return biref_fail(msg, msg_len, "line %ld: column %s appears twice in the header", line, names[r]);
+                col[r] = i;
+            }
+        if (col[r] < 0) {
+            if (looks_numeric(hb[0], he[0]))
+                return biref_fail(msg, msg_len,
+                                  "line %ld: expected a header naming the columns (%s, %s, %s, %s, %s) before the data",
+                                  line, names[0], names[1], names[2], names[3], names[4]);
+            int w = (int)(e - b) > 80 ? 80 : (int)(e - b);
+            return biref_fail(msg, msg_len, "line %ld: the header has no column '%s' for %s (header: %.*s%s; map columns "
+                              "with --columns)", line, names[r], ROLE[r], w, b, (int)(e - b) > 80 ? "..." : "");
+        }
+    }
+    return BIREF_OK;
+}
+
+/* One node row: position and stress in the file's units scaled to metres and pascals. */
+static biref_status parse_node(const char *const db[], const char *const de[], const int col[NROLE],
+                               const char label[NROLE][80], const biref_pe_node_format *fmt, long line, node_row *nr,
+                               char *msg, size_t msg_len)
+{
+    double v[NROLE];
+    for (int r = 0; r < NROLE; r++) {
+        char buf[64];
+        int why = parse_number(db[col[r]], de[col[r]], &v[r], buf);
+        const double scale = r < 2 ? fmt->length_m : fmt->stress_pa;
+        if (!why && !isfinite(v[r] * scale)) why = 3;
+        if (why == 1) return biref_fail(msg, msg_len, "line %ld, column %s: empty field", line, label[r]);
+        if (why == 2)
+            return biref_fail(msg, msg_len, "line %ld, column %s: not a number: '%s%s'", line, label[r], buf,
+                              de[col[r]] - db[col[r]] >= 64 ? "..." : "");
+        if (why == 3)
+            return biref_fail(msg, msg_len, "line %ld, column %s: not a finite number: '%s'", line, label[r], buf);
+        v[r] *= scale;
+    }
+    nr->x = v[ROLE_X];
+    nr->y = v[ROLE_Y];
+    nr->s[0] = v[ROLE_SXX];
+    nr->s[1] = v[ROLE_SYY];
+    nr->s[2] = v[ROLE_TXY];
+    nr->line = line;
+    return BIREF_OK;
+}
+
+/* The data rows after the header (ncol fields each); at least 3. */
+static biref_status read_nodes(line_reader *rd, char delim, int ncol, const int col[NROLE], const char label[NROLE][80],
+                               const biref_pe_node_format *fmt, node_row **rows_out, size_t *n_out, char *msg,
+                               size_t msg_len)
+{
+    size_t cap = 0, n = 0;
+    node_row *rows = NULL;
+    biref_status st = BIREF_OK;
+    const char *b, *e, *db[MAX_FIELDS], *de[MAX_FIELDS];
+    while (st == BIREF_OK && next_line(rd, &b, &e, NULL)) {
+        int nf = split_fields(b, e, delim, db, de, MAX_FIELDS);
+        if (nf != ncol) {
+            if (rd->last && nf < ncol)
+                st = biref_fail(msg, msg_len, "line %ld: truncated row (%d of %d fields, and the file ends there)",
+                                rd->line, nf, ncol);
+            else
+                st = biref_fail(msg, msg_len, "line %ld: expected %d fields as in the header, got %d", rd->line, ncol, nf);
+            break;
+        }
+        if (n == cap) {
+            if ((long)n >= MAX_NODES) {
+                st = biref_fail(msg, msg_len, "line %ld: more than %ld nodes", rd->line, MAX_NODES);
+                break;
+            }
+            size_t nc = cap ? 2 * cap : 1024;
+            node_row *nr = realloc(rows, nc * sizeof *rows);
+            if (!nr) {
+                st = biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
+                break;
+            }
+            rows = nr;
+            cap = nc;
+        }
+        st = parse_node(db, de, col, label, fmt, rd->line, &rows[n], msg, msg_len);
+        if (st == BIREF_OK) n++;
+    }
+    if (st == BIREF_OK && n < 3)
+        st = biref_fail(msg, msg_len, "line %ld: the file ends after %zu data row%s; a triangulation needs at least 3 "
+                        "nodes", rd->line, n, n == 1 ? "" : "s");
+    if (st != BIREF_OK) {
+        free(rows);
+        return st;
+    }
+    *rows_out = rows;
+    *n_out = n;
+    return BIREF_OK;
+}
+
+/* The mesh's nodes: rows sorted, coincident ones merged. */
+static biref_status mesh_nodes(biref_pe_mesh *m, node_row *rows, size_t n, char *msg, size_t msg_len)
+{
+    qsort(rows, n, sizeof *rows, cmp_row);
+    double ext = 0;
+    for (size_t i = 0; i < n; i++) ext = fmax(ext, fmax(fabs(rows[i].x), fabs(rows[i].y)));
+    m->rows = n;
+    m->n = merge_coincident(rows, n, 1e-12 * ext);
+    m->xy = malloc(m->n * 2 * sizeof *m->xy);
+    m->s = malloc(m->n * 3 * sizeof *m->s);
+    if (!m->n || !m->xy || !m->s) return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
+    for (size_t i = 0; i < m->n; i++) {
+        m->xy[2 * i] = rows[i].x;
+        m->xy[2 * i + 1] = rows[i].y;
+        memcpy(m->s + 3 * i, rows[i].s, sizeof rows[i].s);
+    }
+    return BIREF_OK;
+}
 
 biref_status biref_pe_mesh_parse(const char *text, size_t len, const biref_pe_node_format *fmt, biref_pe_mesh **out,
                                  char *msg, size_t msg_len)
@@ -382,108 +524,16 @@ biref_status biref_pe_mesh_parse(const char *text, size_t len, const biref_pe_no
     if (!next_line(&rd, &b, &e, NULL))
         return biref_fail(msg, msg_len, "empty file: expected a header naming the columns %s, %s, %s, %s, %s", names[0],
                           names[1], names[2], names[3], names[4]);
-    char delim = memchr(b, ',', (size_t)(e - b)) ? ',' : memchr(b, ';', (size_t)(e - b)) ? ';' : ' ';
-    const char *hb[MAX_FIELDS], *he[MAX_FIELDS];
-    int ncol = split_fields(b, e, delim, hb, he, MAX_FIELDS);
-    if (ncol > MAX_FIELDS) return biref_fail(msg, msg_len, "line %ld: more than %d columns", rd.line, MAX_FIELDS);
-    int col[NROLE];
-    char label[NROLE][80];
-    for (int r = 0; r < NROLE; r++) {
-        col[r] = -1;
-        column_label(label[r], sizeof label[r], r, names[r]);
-        for (int i = 0; i < ncol; i++)
-            if (name_is(hb[i], he[i], names[r])) {
-                if (col[r] >= 0)
-                    return biref_fail(msg, msg_len, "line %ld: column %s appears twice in the header", rd.line, names[r]);
-                col[r] = i;
-            }
-        if (col[r] < 0) {
-            if (looks_numeric(hb[0], he[0]))
-                return biref_fail(msg, msg_len,
-                                  "line %ld: expected a header naming the columns (%s, %s, %s, %s, %s) before the data",
-                                  rd.line, names[0], names[1], names[2], names[3], names[4]);
-            int w = (int)(e - b) > 80 ? 80 : (int)(e - b);
-            return biref_fail(msg, msg_len, "line %ld: the header has no column '%s' for %s (header: %.*s%s; map columns "
-                              "with --columns)", rd.line, names[r], ROLE[r], w, b, (int)(e - b) > 80 ? "..." : "");
-        }
-    }
-    size_t cap = 0, n = 0;
+    int col[NROLE], ncol;
+    char label[NROLE][80], delim;
+    biref_status st = map_header(b, e, rd.line, names, col, label, &delim, &ncol, msg, msg_len);
+    if (st != BIREF_OK) return st;
     node_row *rows = NULL;
-    biref_status st = BIREF_OK;
-    const char *db[MAX_FIELDS], *de[MAX_FIELDS];
-    while (st == BIREF_OK && next_line(&rd, &b, &e, NULL)) {
-        int nf = split_fields(b, e, delim, db, de, MAX_FIELDS);
-        if (nf != ncol) {
-            if (rd.last && nf < ncol)
-                st = biref_fail(msg, msg_len, "line %ld: truncated row (%d of %d fields, and the file ends there)", rd.line,
-                                nf, ncol);
-            else
-                st = biref_fail(msg, msg_len, "line %ld: expected %d fields as in the header, got %d", rd.line, ncol, nf);
-            break;
-        }
-        if (n == cap) {
-            if ((long)n >= MAX_NODES) {
-                st = biref_fail(msg, msg_len, "line %ld: more than %ld nodes", rd.line, MAX_NODES);
-                break;
-            }
-            size_t nc = cap ? 2 * cap : 1024;
-            node_row *nr = realloc(rows, nc * sizeof *rows);
-            if (!nr) {
-                st = biref_fail(msg, msg_len, "out of memory");
-                st = BIREF_ERR_NOMEM;
-                break;
-            }
-            rows = nr;
-            cap = nc;
-        }
-        double v[NROLE];
-        for (int r = 0; r < NROLE && st == BIREF_OK; r++) {
-            char buf[64];
-            int why = parse_number(db[col[r]], de[col[r]], &v[r], buf);
-            const double scale = r < 2 ? fmt->length_m : fmt->stress_pa;
-            if (!why && !isfinite(v[r] * scale)) why = 3;
-            if (why == 1)
-                st = biref_fail(msg, msg_len, "line %ld, column %s: empty field", rd.line, label[r]);
-            else if (why == 2)
-                st = biref_fail(msg, msg_len, "line %ld, column %s: not a number: '%s%s'", rd.line, label[r], buf,
-                                de[col[r]] - db[col[r]] >= 64 ? "..." : "");
-            else if (why == 3)
-                st = biref_fail(msg, msg_len, "line %ld, column %s: not a finite number: '%s'", rd.line, label[r], buf);
-            v[r] *= scale;
-        }
-        if (st != BIREF_OK) break;
-        node_row *nr = &rows[n++];
-        nr->x = v[ROLE_X];
-        nr->y = v[ROLE_Y];
-        nr->s[0] = v[ROLE_SXX];
-        nr->s[1] = v[ROLE_SYY];
-        nr->s[2] = v[ROLE_TXY];
-        nr->line = rd.line;
-    }
-    if (st == BIREF_OK && n < 3)
-        st = biref_fail(msg, msg_len, "line %ld: the file ends after %zu data row%s; a triangulation needs at least 3 "
-                        "nodes", rd.line, n, n == 1 ? "" : "s");
-    biref_pe_mesh *m = NULL;
-    if (st == BIREF_OK) {
-        m = calloc(1, sizeof *m);
-        if (!m) st = BIREF_ERR_NOMEM;
-    }
-    if (st == BIREF_OK) {
-        qsort(rows, n, sizeof *rows, cmp_row);
-        double ext = 0;
-        for (size_t i = 0; i < n; i++) ext = fmax(ext, fmax(fabs(rows[i].x), fabs(rows[i].y)));
-        m->rows = n;
-        m->n = merge_coincident(rows, n, 1e-12 * ext);
-        m->xy = malloc(m->n * 2 * sizeof *m->xy);
-        m->s = malloc(m->n * 3 * sizeof *m->s);
-        if (!m->n || !m->xy || !m->s) st = BIREF_ERR_NOMEM;
-        for (size_t i = 0; st == BIREF_OK && i < m->n; i++) {
-            m->xy[2 * i] = rows[i].x;
-            m->xy[2 * i + 1] = rows[i].y;
-            memcpy(m->s + 3 * i, rows[i].s, sizeof rows[i].s);
-        }
-        if (st == BIREF_ERR_NOMEM) biref_fail(msg, msg_len, "out of memory");
-    }
+    size_t n = 0;
+    st = read_nodes(&rd, delim, ncol, col, (const char(*)[80])label, fmt, &rows, &n, msg, msg_len);
+    if (st != BIREF_OK) return st;
+    biref_pe_mesh *m = calloc(1, sizeof *m);
+    st = m ? mesh_nodes(m, rows, n, msg, msg_len) : biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
     free(rows);
     if (st == BIREF_OK) st = triangulate(m, msg, msg_len);
     if (st != BIREF_OK) {
@@ -510,6 +560,33 @@ biref_status biref_pe_mesh_load(const char *path, const biref_pe_node_format *fm
 /* ------------------------------------------------------------------------ */
 /* Boundary                                                                  */
 /* ------------------------------------------------------------------------ */
+
+/* Per bucket cell: 2 if a boundary edge may touch it (its points are tested one by one), else
+ * wholly inside (1) or outside (0) the boundary, as its centre. */
+static void classify_cells(biref_pe_mesh *m)
+{
+    const size_t ncell = (size_t)m->gx * m->gy, nl = m->nloops, *starts = m->loop_start;
+    const double *xy = m->loop_xy;
+    unsigned char *cin = m->cell_in;
+    memset(cin, 0, ncell);
+    for (size_t l = 0; l < nl; l++)
+        for (size_t i = starts[l], j = starts[l + 1] - 1; i < starts[l + 1]; j = i++) {
+            const double x0 = fmin(xy[2 * i], xy[2 * j]), x1 = fmax(xy[2 * i], xy[2 * j]);
+            const double y0 = fmin(xy[2 * i + 1], xy[2 * j + 1]), y1 = fmax(xy[2 * i + 1], xy[2 * j + 1]);
+            double fi0 = floor((x0 - m->box[0]) / m->cw) - 1, fi1 = floor((x1 - m->box[0]) / m->cw) + 1;
+            double fj0 = floor((y0 - m->box[2]) / m->ch) - 1, fj1 = floor((y1 - m->box[2]) / m->ch) + 1;
+            if (fi1 < 0 || fj1 < 0 || fi0 >= m->gx || fj0 >= m->gy) continue;
+            int i0 = fi0 < 0 ? 0 : (int)fi0, i1 = fi1 >= m->gx ? m->gx - 1 : (int)fi1;
+            int j0 = fj0 < 0 ? 0 : (int)fj0, j1 = fj1 >= m->gy ? m->gy - 1 : (int)fj1;
+            for (int jj = j0; jj <= j1; jj++)
+                for (int ii = i0; ii <= i1; ii++) cin[(size_t)jj * m->gx + ii] = 2;
+        }
+    for (int jj = 0; jj < m->gy; jj++)
+        for (int ii = 0; ii < m->gx; ii++) {
+            unsigned char *c = &cin[(size_t)jj * m->gx + ii];
+            if (*c != 2) *c = (unsigned char)inside_boundary(m, m->box[0] + (ii + 0.5) * m->cw, m->box[2] + (jj + 0.5) * m->ch);
+        }
+}
 
 biref_status biref_pe_mesh_boundary_parse(biref_pe_mesh *m, const char *text, size_t len, double length_m, char *msg,
                                           size_t msg_len)
@@ -611,26 +688,7 @@ biref_status biref_pe_mesh_boundary_parse(biref_pe_mesh *m, const char *text, si
     m->nloops = nl;
     m->nverts = nv;
     m->cell_in = cin;
-    /* Cells a boundary edge may touch are tested point by point; the others are wholly inside or
-     * outside, as their centre. */
-    memset(cin, 0, ncell);
-    for (size_t l = 0; l < nl; l++)
-        for (size_t i = starts[l], j = starts[l + 1] - 1; i < starts[l + 1]; j = i++) {
-            const double x0 = fmin(xy[2 * i], xy[2 * j]), x1 = fmax(xy[2 * i], xy[2 * j]);
-            const double y0 = fmin(xy[2 * i + 1], xy[2 * j + 1]), y1 = fmax(xy[2 * i + 1], xy[2 * j + 1]);
-            double fi0 = floor((x0 - m->box[0]) / m->cw) - 1, fi1 = floor((x1 - m->box[0]) / m->cw) + 1;
-            double fj0 = floor((y0 - m->box[2]) / m->ch) - 1, fj1 = floor((y1 - m->box[2]) / m->ch) + 1;
-            if (fi1 < 0 || fj1 < 0 || fi0 >= m->gx || fj0 >= m->gy) continue;
-            int i0 = fi0 < 0 ? 0 : (int)fi0, i1 = fi1 >= m->gx ? m->gx - 1 : (int)fi1;
-            int j0 = fj0 < 0 ? 0 : (int)fj0, j1 = fj1 >= m->gy ? m->gy - 1 : (int)fj1;
-            for (int jj = j0; jj <= j1; jj++)
-                for (int ii = i0; ii <= i1; ii++) cin[(size_t)jj * m->gx + ii] = 2;
-        }
-    for (int jj = 0; jj < m->gy; jj++)
-        for (int ii = 0; ii < m->gx; ii++) {
-            unsigned char *c = &cin[(size_t)jj * m->gx + ii];
-            if (*c != 2) *c = (unsigned char)inside_boundary(m, m->box[0] + (ii + 0.5) * m->cw, m->box[2] + (jj + 0.5) * m->ch);
-        }
+    classify_cells(m);
     return BIREF_OK;
 }
 

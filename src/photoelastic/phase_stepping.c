@@ -123,37 +123,63 @@ static double wrap_pi(double x)
 /* Below this |sin delta| a pixel has no isoclinic at all. */
 #define ISO_Q 1e-3
 
-biref_status biref_pe_demodulate(int n, const float *const images[], int W, int H, const biref_pe_demod_opts *o,
-                                 const biref_pe_demod_maps *out, char *msg, size_t msg_len)
+/* The demodulation's per-pixel working arrays. */
+typedef struct {
+    int W, H;
+    size_t np;
+    /* 2phi' and delta' in [0, pi] of the branch with sin delta >= 0, its quality |sin delta|
+     * (-1: masked or non-finite), Ia, Ib. */
+    float *two_phi, *dl, *qual, *ia, *ib;
+    float *vec, *smooth;   /* branch-free (cos d, cos 2phi sin d, sin 2phi sin d); flood order key */
+    double *unw;           /* unwrapped delta of the chosen branch */
+    float *ref2phi;        /* isoclinic passed on to neighbours */
+    signed char *branch;   /* +1: (2phi', delta'), -1: (2phi' + pi, -delta'); 0: not reached */
+    heap h;
+} demod_work;
+
+static void demod_work_free(demod_work *w)
 {
-    if (n != 4 && n != 6) return biref_fail(msg, msg_len, "expected 4 or 6 images, got %d", n);
-    if (!images || !o || !out || W < 1 || H < 1) return biref_fail(msg, msg_len, "bad arguments");
-    for (int k = 0; k < n; k++)
-        if (!images[k]) return biref_fail(msg, msg_len, "image %d missing", k + 1);
-    const int rx = (int)lround(o->ref_x), ry = (int)lround(o->ref_y);
-    if (!(o->ref_x >= 0 && o->ref_x < W && o->ref_y >= 0 && o->ref_y < H) || rx >= W || ry >= H)
-        return biref_fail(msg, msg_len, "the reference pixel (%g, %g) is outside the %d x %d images", o->ref_x, o->ref_y,
-                          W, H);
-    if (!isfinite(o->ref_order)) return biref_fail(msg, msg_len, "the reference fringe order must be finite");
-    const double min_mod = o->min_modulation >= 0 && isfinite(o->min_modulation) ? o->min_modulation : 0.05;
+    free(w->two_phi);
+    free(w->dl);
+    free(w->qual);
+    free(w->ia);
+    free(w->ib);
+    free(w->vec);
+    free(w->smooth);
+    free(w->unw);
+    free(w->ref2phi);
+    free(w->branch);
+    free(w->h.a);
+}
+
+static int demod_work_alloc(demod_work *w, int W, int H)
+{
     const size_t np = (size_t)W * H;
-    /* Per pixel: 2phi' and delta' in [0, pi] of the branch with sin delta >= 0, its quality
-     * |sin delta|, Ia, Ib. */
-    float *two_phi = malloc(np * sizeof *two_phi), *dl = malloc(np * sizeof *dl), *qual = malloc(np * sizeof *qual);
-    float *ia = malloc(np * sizeof *ia), *ib = malloc(np * sizeof *ib);
-    float *vec = malloc(np * 3 * sizeof *vec), *smooth = malloc(np * sizeof *smooth);
-    double *unw = malloc(np * sizeof *unw);  /* unwrapped delta of the chosen branch */
-    float *ref2phi = malloc(np * sizeof *ref2phi); /* isoclinic passed on to neighbours */
-    signed char *branch = malloc(np);          /* +1: (2phi', delta'), -1: (2phi' + pi, -delta'); 0: not reached */
-    heap h = {malloc(np * sizeof(heap_item)), 0};
-    biref_status st = BIREF_OK;
-    if (!two_phi || !dl || !qual || !ia || !ib || !vec || !smooth || !unw || !ref2phi || !branch || !h.a) {
-        st = biref_fail(msg, msg_len, "out of memory");
-        st = BIREF_ERR_NOMEM;
-        goto done;
-    }
+    w->W = W;
+    w->H = H;
+    w->np = np;
+    w->two_phi = malloc(np * sizeof *w->two_phi);
+    w->dl = malloc(np * sizeof *w->dl);
+    w->qual = malloc(np * sizeof *w->qual);
+    w->ia = malloc(np * sizeof *w->ia);
+    w->ib = malloc(np * sizeof *w->ib);
+    w->vec = malloc(np * 3 * sizeof *w->vec);
+    w->smooth = malloc(np * sizeof *w->smooth);
+    w->unw = malloc(np * sizeof *w->unw);
+    w->ref2phi = malloc(np * sizeof *w->ref2phi);
+    w->branch = malloc(np);
+    w->h.a = malloc(np * sizeof(heap_item));
+    w->h.n = 0;
+    return w->two_phi && w->dl && w->qual && w->ia && w->ib && w->vec && w->smooth && w->unw && w->ref2phi &&
+           w->branch && w->h.a;
+}
+
+/* The wrapped isoclinic and isochromatic of every pixel from the n step intensities (the
+ * formulas in the header comment); returns the largest modulation Ia. */
+static double wrapped_phases(int n, const float *const images[], demod_work *w)
+{
     double ia_max = 0;
-    for (size_t p = 0; p < np; p++) {
+    for (size_t p = 0; p < w->np; p++) {
         double im[6];
         int finite = 1;
         for (int k = 0; k < n; k++) {
@@ -175,32 +201,31 @@ biref_status biref_pe_demodulate(int n, const float *const images[], int W, int 
         }
         const double s = hypot(xs, ys), a = sqrt(c * c + s * s);
         if (!finite) {
-            ia[p] = ib[p] = NAN;
-            qual[p] = -1;
+            w->ia[p] = w->ib[p] = NAN;
+            w->qual[p] = -1;
             continue;
         }
-        two_phi[p] = (float)atan2(ys, xs);
-        dl[p] = (float)atan2(s, c);
-        ia[p] = (float)a;
-        ib[p] = (float)(mean - 0.5 * a);
-        qual[p] = a > 0 ? (float)(s / a) : 0.0f;
+        w->two_phi[p] = (float)atan2(ys, xs);
+        w->dl[p] = (float)atan2(s, c);
+        w->ia[p] = (float)a;
+        w->ib[p] = (float)(mean - 0.5 * a);
+        w->qual[p] = a > 0 ? (float)(s / a) : 0.0f;
         /* (cos d, cos 2phi sin d, sin 2phi sin d): free of the branch ambiguity. */
-        vec[3 * p] = a > 0 ? (float)(c / a) : 1.0f;
-        vec[3 * p + 1] = a > 0 ? (float)(xs / a) : 0.0f;
-        vec[3 * p + 2] = a > 0 ? (float)(ys / a) : 0.0f;
+        w->vec[3 * p] = a > 0 ? (float)(c / a) : 1.0f;
+        w->vec[3 * p + 1] = a > 0 ? (float)(xs / a) : 0.0f;
+        w->vec[3 * p + 2] = a > 0 ? (float)(ys / a) : 0.0f;
         ia_max = fmax(ia_max, a);
     }
-    if (!(ia_max > 0)) {
-        st = biref_fail(msg, msg_len, "the images carry no modulation (all steps equal)");
-        goto done;
-    }
-    for (size_t p = 0; p < np; p++) {
-        branch[p] = 0;
-        if (qual[p] >= 0 && !(ia[p] >= min_mod * ia_max)) qual[p] = -1; /* masked */
-    }
-    /* The flood follows the smoothest pixels first: 1 - half the largest step of the branch-free
-     * vector to a neighbour. Where fringes are finer than the pixels (load points) the steps
-     * are large and those pixels come last, so that they cannot pass a wrong order on. */
+    return ia_max;
+}
+
+/* The flood follows the smoothest pixels first: 1 - half the largest step of the branch-free
+ * vector to a neighbour. Where fringes are finer than the pixels (load points) the steps
+ * are large and those pixels come last, so that they cannot pass a wrong order on. */
+static void flood_order(demod_work *w)
+{
+    const int W = w->W, H = w->H;
+    const float *qual = w->qual, *vec = w->vec;
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
             const size_t p = (size_t)y * W + x;
@@ -216,51 +241,60 @@ biref_status biref_pe_demodulate(int n, const float *const images[], int W, int 
             }
             /* Pixels without an isoclinic (the empty field, isotropic points) come after all
              * others: entering the part from them would have to guess the phase's sign. */
-            smooth[p] = (float)(1.0 - 0.5 * sqrt(worst) + (qual[p] >= ISO_Q ? 1.0 : 0.0));
+            w->smooth[p] = (float)(1.0 - 0.5 * sqrt(worst) + (qual[p] >= ISO_Q ? 1.0 : 0.0));
         }
-    const size_t rp = (size_t)ry * W + rx;
-    if (qual[rp] < 0) {
-        st = biref_fail(msg, msg_len, "the reference pixel (%d, %d) has too little modulation (%.3g of the largest)", rx,
-                        ry, ia_max > 0 && isfinite(ia[rp]) ? ia[rp] / ia_max : 0.0);
-        goto done;
-    }
-    /* Quality-guided flood over the reference's region, from its best pixel. A stack-free
-     * flood first finds the region's best pixel. */
-    {
-        size_t best = rp;
-        heap_push(&h, 0, (int)rp);
-        branch[rp] = 2; /* visited */
-        while (h.n) {
-            heap_item it = heap_pop(&h);
-            const int x = it.i % W, y = it.i / W;
-            /* Start where the isoclinic is defined (|sin d| >= 1/2) and the field smoothest. */
-            const int okb = qual[best] >= 0.5f, oki = qual[it.i] >= 0.5f;
-            if (oki > okb || (oki == okb && smooth[it.i] > smooth[best])) best = (size_t)it.i;
-            (void)0;
-            const int nb[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
-            for (int k = 0; k < 4; k++) {
-                if (nb[k][0] < 0 || nb[k][0] >= W || nb[k][1] < 0 || nb[k][1] >= H) continue;
-                const size_t q = (size_t)nb[k][1] * W + nb[k][0];
-                if (branch[q] || qual[q] < 0) continue;
-                branch[q] = 2;
-                heap_push(&h, 0, (int)q);
-            }
+}
+
+/* The best pixel of the reference's region to start the unwrapping from: one where the
+ * isoclinic is defined (|sin d| >= 1/2) and the field smoothest. A stack-free flood over the
+ * region (branch[] marks visited pixels, cleared again). */
+static size_t region_seed(demod_work *w, size_t rp)
+{
+    const int W = w->W, H = w->H;
+    heap *h = &w->h;
+    size_t best = rp;
+    heap_push(h, 0, (int)rp);
+    w->branch[rp] = 2; /* visited */
+    while (h->n) {
+        heap_item it = heap_pop(h);
+        const int x = it.i % W, y = it.i / W;
+        const int okb = w->qual[best] >= 0.5f, oki = w->qual[it.i] >= 0.5f;
+        if (oki > okb || (oki == okb && w->smooth[it.i] > w->smooth[best])) best = (size_t)it.i;
+        const int nb[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
+        for (int k = 0; k < 4; k++) {
+            if (nb[k][0] < 0 || nb[k][0] >= W || nb[k][1] < 0 || nb[k][1] >= H) continue;
+            const size_t q = (size_t)nb[k][1] * W + nb[k][0];
+            if (w->branch[q] || w->qual[q] < 0) continue;
+            w->branch[q] = 2;
+            heap_push(h, 0, (int)q);
         }
-        for (size_t p = 0; p < np; p++) branch[p] = 0;
-        branch[best] = 1;
-        unw[best] = dl[best];
-        ref2phi[best] = two_phi[best];
-        heap_push(&h, smooth[best], (int)best);
     }
-    while (h.n) {
-        heap_item it = heap_pop(&h);
+    for (size_t p = 0; p < w->np; p++) w->branch[p] = 0;
+    return best;
+}
+
+/* Quality-guided unwrapping from the seed: each pixel reached takes the branch continuous
+ * with the neighbour it was reached from, and its delta unwrapped against that neighbour's. */
+static void unwrap_from(demod_work *w, size_t best)
+{
+    const int W = w->W, H = w->H;
+    heap *h = &w->h;
+    const float *two_phi = w->two_phi, *dl = w->dl, *qual = w->qual;
+    float *ref2phi = w->ref2phi;
+    double *unw = w->unw;
+    w->branch[best] = 1;
+    unw[best] = dl[best];
+    ref2phi[best] = two_phi[best];
+    heap_push(h, w->smooth[best], (int)best);
+    while (h->n) {
+        heap_item it = heap_pop(h);
         const size_t p = (size_t)it.i;
         const int x = it.i % W, y = it.i / W;
         const int nb[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
         for (int k = 0; k < 4; k++) {
             if (nb[k][0] < 0 || nb[k][0] >= W || nb[k][1] < 0 || nb[k][1] >= H) continue;
             const size_t q = (size_t)nb[k][1] * W + nb[k][0];
-            if (branch[q] || qual[q] < 0) continue;
+            if (w->branch[q] || qual[q] < 0) continue;
             int b;
             /* ref2phi is NAN where no isoclinic is known yet (the empty field, isotropic lines). */
             if (qual[q] >= Q_LOW && !isnan(ref2phi[p])) {
@@ -277,53 +311,86 @@ biref_status biref_pe_demodulate(int n, const float *const images[], int W, int 
             }
             const double d = b * dl[q];
             unw[q] = d + 2.0 * M_PI * nearbyint((unw[p] - d) / (2.0 * M_PI));
-            branch[q] = (signed char)b;
-            heap_push(&h, smooth[q], (int)q);
+            w->branch[q] = (signed char)b;
+            heap_push(h, w->smooth[q], (int)q);
         }
     }
-    /* The global sign (s1 and s2 swapped everywhere) and the integer offset at the reference. */
-    {
-        long neg[2] = {0, 0};
-        double kref[2];
-        for (int s = 0; s < 2; s++) {
-            const double sg = s ? -1.0 : 1.0;
-            kref[s] = nearbyint(o->ref_order - sg * unw[rp] / (2.0 * M_PI));
-            for (size_t p = 0; p < np; p++)
-                if (branch[p] && sg * unw[p] / (2.0 * M_PI) + kref[s] < -0.25) neg[s]++;
-        }
-        const int s = neg[1] < neg[0];
+}
+
+/* The global sign (s1 and s2 swapped everywhere) and the integer offset at the reference, then
+ * the requested maps (NAN outside the unwrapped region). */
+static void write_maps(const demod_work *w, size_t rp, double ref_order, const biref_pe_demod_maps *out)
+{
+    const size_t np = w->np;
+    long neg[2] = {0, 0};
+    double kref[2];
+    for (int s = 0; s < 2; s++) {
         const double sg = s ? -1.0 : 1.0;
-        for (size_t p = 0; p < np; p++) {
-            const int in = branch[p] != 0;
-            const double N = sg * unw[p] / (2.0 * M_PI) + kref[s];
-            if (out->fringe_order) out->fringe_order[p] = in ? (float)N : NAN;
-            if (out->phase_wrapped) {
-                double w = fmod(2.0 * M_PI * N, 2.0 * M_PI);
-                if (w < 0) w += 2.0 * M_PI;
-                out->phase_wrapped[p] = in ? (float)w : NAN;
-            }
-            if (out->isoclinic_deg) {
-                /* The chosen branch's 2phi (near sin delta = 0: the neighbours'), turned by pi if
-                 * the global sign flipped; phi in (-90, 90]. */
-                double phi = 0.5 * wrap_pi(ref2phi[p] + (s ? M_PI : 0.0)) * 180.0 / M_PI;
-                if (phi <= -90.0) phi += 180.0;
-                out->isoclinic_deg[p] = in ? (float)phi : NAN; /* NAN stays NAN */
-            }
-            if (out->modulation) out->modulation[p] = qual[p] >= 0 ? ia[p] : NAN;
-            if (out->background) out->background[p] = qual[p] >= 0 ? ib[p] : NAN;
-        }
+        kref[s] = nearbyint(ref_order - sg * w->unw[rp] / (2.0 * M_PI));
+        for (size_t p = 0; p < np; p++)
+            if (w->branch[p] && sg * w->unw[p] / (2.0 * M_PI) + kref[s] < -0.25) neg[s]++;
     }
+    const int s = neg[1] < neg[0];
+    const double sg = s ? -1.0 : 1.0;
+    for (size_t p = 0; p < np; p++) {
+        const int in = w->branch[p] != 0;
+        const double N = sg * w->unw[p] / (2.0 * M_PI) + kref[s];
+        if (out->fringe_order) out->fringe_order[p] = in ? (float)N : NAN;
+        if (out->phase_wrapped) {
+            double wr = fmod(2.0 * M_PI * N, 2.0 * M_PI);
+            if (wr < 0) wr += 2.0 * M_PI;
+            out->phase_wrapped[p] = in ? (float)wr : NAN;
+        }
+        if (out->isoclinic_deg) {
+            /* The chosen branch's 2phi (near sin delta = 0: the neighbours'), turned by pi if
+             * the global sign flipped; phi in (-90, 90]. */
+            double phi = 0.5 * wrap_pi(w->ref2phi[p] + (s ? M_PI : 0.0)) * 180.0 / M_PI;
+            if (phi <= -90.0) phi += 180.0;
+            out->isoclinic_deg[p] = in ? (float)phi : NAN; /* NAN stays NAN */
+        }
+        if (out->modulation) out->modulation[p] = w->qual[p] >= 0 ? w->ia[p] : NAN;
+        if (out->background) out->background[p] = w->qual[p] >= 0 ? w->ib[p] : NAN;
+    }
+}
+
+biref_status biref_pe_demodulate(int n, const float *const images[], int W, int H, const biref_pe_demod_opts *o,
+                                 const biref_pe_demod_maps *out, char *msg, size_t msg_len)
+{
+    if (n != 4 && n != 6) return biref_fail(msg, msg_len, "expected 4 or 6 images, got %d", n);
+    if (!images || !o || !out || W < 1 || H < 1) return biref_fail(msg, msg_len, "bad arguments");
+    for (int k = 0; k < n; k++)
+        if (!images[k]) return biref_fail(msg, msg_len, "image %d missing", k + 1);
+    const int rx = (int)lround(o->ref_x), ry = (int)lround(o->ref_y);
+    if (!(o->ref_x >= 0 && o->ref_x < W && o->ref_y >= 0 && o->ref_y < H) || rx >= W || ry >= H)
+        return biref_fail(msg, msg_len, "the reference pixel (%g, %g) is outside the %d x %d images", o->ref_x, o->ref_y,
+                          W, H);
+    if (!isfinite(o->ref_order)) return biref_fail(msg, msg_len, "the reference fringe order must be finite");
+    const double min_mod = o->min_modulation >= 0 && isfinite(o->min_modulation) ? o->min_modulation : 0.05;
+    demod_work w;
+    biref_status st = BIREF_OK;
+    if (!demod_work_alloc(&w, W, H)) {
+        st = biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
+        goto done;
+    }
+    const double ia_max = wrapped_phases(n, images, &w);
+    if (!(ia_max > 0)) {
+        st = biref_fail(msg, msg_len, "the images carry no modulation (all steps equal)");
+        goto done;
+    }
+    for (size_t p = 0; p < w.np; p++) {
+        w.branch[p] = 0;
+        if (w.qual[p] >= 0 && !(w.ia[p] >= min_mod * ia_max)) w.qual[p] = -1; /* masked */
+    }
+    flood_order(&w);
+    const size_t rp = (size_t)ry * W + rx;
+    if (w.qual[rp] < 0) {
+        st = biref_fail(msg, msg_len, "the reference pixel (%d, %d) has too little modulation (%.3g of the largest)", rx,
+                        ry, ia_max > 0 && isfinite(w.ia[rp]) ? w.ia[rp] / ia_max : 0.0);
+        goto done;
+    }
+    unwrap_from(&w, region_seed(&w, rp));
+    write_maps(&w, rp, o->ref_order, out);
 done:
-    free(two_phi);
-    free(dl);
-    free(qual);
-    free(ia);
-    free(ib);
-    free(vec);
-    free(smooth);
-    free(unw);
-    free(ref2phi);
-    free(branch);
-    free(h.a);
+    demod_work_free(&w);
     return st;
 }

@@ -24,7 +24,7 @@ void acc_options_default(acc_options *o)
     o->nphi = 16;
     o->samples_ref = DEFAULT_REFERENCE_SAMPLES;
     o->samples_check = -1; /* 4x the reference unless given */
-    o->cost_opts = (acc_cost_opts){0.3, 5, 0, 0};
+    o->cost_opts = (acc_cost_opts){0.3, 5, 0, NULL};
     biref_spectral_config_default(&o->scfg);
 }
 
@@ -152,26 +152,32 @@ static int make_plans(const acc_run *run, const acc_options *o, biref_spectral *
 /* The cost measurement, then the sweep over every material. Returns 0 or -1. */
 static int compute(acc_run *run, const acc_options *o, const acc_plans *pl)
 {
-    const int tty = isatty(STDERR_FILENO);
-    run->cost_opts.progress = tty || o->progress;
+    biref_progress_bar bar;
+    biref_progress_bar_init(&bar, stderr, 1, "accuracy");
+    run->cost_opts.progress = &bar;
     /* Cost first: on one thread, before any OpenMP team exists whose idle workers could spin on the
      * other core while it is timed. */
     if (o->cost && acc_measure_cost(run, pl)) return -1;
 
     if (o->threads > 0) omp_set_num_threads((int)o->threads);
     run->threads = omp_get_max_threads();
-    acc_progress pg = {tty || o->progress, tty, 0,
-                       (long)run->nmat * ((long)run->ntheta + AXIS_SETS * AXIS_NPSI) * run->nphi, omp_get_wtime(),
-                       0.0};
+    acc_progress pg = {&bar, 0, (long)run->nmat * ((long)run->ntheta + AXIS_SETS * AXIS_NPSI) * run->nphi};
+    const double t0 = omp_get_wtime();
     if (!o->cost_only) {
-        for (int i = 0; i < run->nmat; i++)
-            if (acc_run_material(run, pl, i, &pg)) return -1;
+        for (int i = 0; i < run->nmat; i++) {
+            char note[80];
+            snprintf(note, sizeof note, "material %s", run->mat[i].name);
+            biref_progress_bar_note(&bar, note);
+            if (acc_run_material(run, pl, i, &pg)) {
+                biref_progress_bar_finish(&bar);
+                return -1;
+            }
+        }
         run->sweep_done = 1;
+        biref_progress_bar_update(&bar, 1, 1);
     }
-    run->total_s = omp_get_wtime() - pg.t0 + run->cost_s;
-    if (pg.on)
-        fprintf(stderr, "%sbiref accuracy: done in %.1f s on %d threads%30s\n", tty ? "\r" : "", run->total_s,
-                run->threads, "");
+    run->total_s = omp_get_wtime() - t0 + run->cost_s;
+    biref_progress_bar_finish(&bar);
     return 0;
 }
 

@@ -30,7 +30,7 @@ typedef struct {
     int cost, cost_only;
     acc_cost_opts cost_opts;
     long threads; /* 0: OpenMP's default */
-    int progress; /* also when stderr is not a terminal */
+    int progress; /* unused: --progress and --quiet are taken for every command (cli_progress.h) */
     const char *csv_path, *md_path, *plot_dir;
     int json;
     /* derived by acc_options_finish */

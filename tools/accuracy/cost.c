@@ -105,9 +105,8 @@ static acc_cost_time time_case(const cost_case *c, const acc_cost_opts *o)
 
 static void report(const acc_cost_opts *o, const char *name, const char *what, const acc_cost_time *t)
 {
-    if (!o->progress) return;
-    fprintf(stderr, "biref accuracy: cost %-14s %-13s %12.1f ns per sample (cpu share %.2f)\n", name, what,
-            t->ns_median, t->cpu_share);
+    biref_progress_bar_message(o->progress, "cost %-14s %-13s %12.1f ns per sample (cpu share %.2f)", name, what,
+                               t->ns_median, t->cpu_share);
 }
 
 int acc_cost_measure(const acc_cost_pool *pool, const acc_cost_opts *o, acc_cost_time *prepare, acc_cost_row *rows,

@@ -8,6 +8,7 @@
 #define BIREF_TOOLS_ACCURACY_COST_H
 
 #include "biref/biref.h"
+#include "cli_progress.h"
 
 typedef struct {
     double ns_median, ns_min; /* per sample, over the timed runs */
@@ -26,7 +27,7 @@ typedef struct {
     double min_time;   /* seconds per timed run after calibration */
     int runs;          /* timed runs per case; the median is reported */
     long fixed_iters;  /* > 0: one run of exactly this many samples, no calibration (callgrind) */
-    int progress;      /* a line per case on stderr */
+    biref_progress_bar *progress; /* a line per case on stderr, or NULL */
 } acc_cost_opts;
 
 /* Slab states to time: n slabs, each with its own angle of incidence (radians). */

@@ -33,18 +33,15 @@ const char *const ACC_METHOD_KEY[NM] = {"analytic",     "expansion",    "numeric
 const int ACC_NUMERIC_N[NNUM] = {3, 8, 16, 32, 64, 128};
 const char *const ACC_TR[2] = {"T", "R"};
 
-static void progress_tick(acc_progress *pg, const char *name)
+/* Every thread counts; the bar is drawn by the master thread alone (it is not thread-safe). The
+ * count is passed in millionths: the total can exceed an int. */
+static void progress_tick(acc_progress *pg)
 {
     long d;
 #pragma omp atomic capture
     d = ++pg->done;
-    if (!pg->on || omp_get_thread_num() != 0) return;
-    double now = omp_get_wtime();
-    if (now - pg->last < (pg->tty ? 0.5 : 10.0) && d != pg->total) return;
-    pg->last = now;
-    fprintf(stderr, "%sbiref accuracy: %3.0f%%  material %-16s %6.1f s%s", pg->tty ? "\r" : "",
-            100.0 * (double)d / (double)pg->total, name, now - pg->t0, pg->tty ? "" : "\n");
-    fflush(stderr);
+    if (omp_get_thread_num() == 0 && d < pg->total)
+        biref_progress_bar_update(pg->bar, (int)(1000000.0 * (double)d / (double)pg->total), 1000000);
 }
 
 /* The near-axis sample sets. A (θ, φ) grid only grazes the narrow cone of directions near the
@@ -211,7 +208,7 @@ int acc_run_material(acc_run *run, const acc_plans *pl, int mi, acc_progress *pg
                 bad_phi = phi;
             }
         }
-        progress_tick(pg, m->name);
+        progress_tick(pg);
     }
     r->elapsed_s = omp_get_wtime() - t0;
     if (bad >= 0) {

@@ -141,12 +141,10 @@ static inline int bin_of(double theta_deg)
     return theta_deg <= SPLIT_DEG + 1e-9 ? 0 : theta_deg <= CRIT_DEG + 1e-9 ? 1 : 2;
 }
 
-/* Progress: on a terminal, one line rewritten in place; with --progress and no terminal (a log
- * file), a new line every 10 s. Otherwise stderr stays for the one-line error. */
+/* Progress of the sweep: evaluated points over all materials, shown by bar (cli_progress.h). */
 typedef struct {
-    int on, tty;
+    biref_progress_bar *bar;
     long done, total;
-    double t0, last;
 } acc_progress;
 
 /* materials.c: the paper's fig. 9 materials (returns their number, 3), or a --materials file. */

@@ -123,7 +123,7 @@ int cli_slab_opts_finish(const char *cmd, cli_slab_opts *o)
     if (!o->have_eta_o) return cli_error(cmd, "missing --eta-o"), -1;
     if (!o->have_eta_e) return cli_error(cmd, "missing --eta-e"), -1;
     if (!o->have_axis) return cli_error(cmd, "missing --axis"), -1;
-    if (!o->have_thickness) return cli_error(cmd, "missing --thickness-um (or --thickness-mm)"), -1;
+    if (!o->have_thickness) return cli_error(cmd, "missing --thickness-um (or --thickness-mm, --thickness-nm)"), -1;
     char msg[200];
     if (biref_slab_check(&o->slab, msg, sizeof msg) != BIREF_OK) return cli_error(cmd, "%s", msg), -1;
     if (biref_theta_check(o->theta_deg * M_PI / 180.0, msg, sizeof msg) != BIREF_OK)

@@ -1,6 +1,6 @@
 #include "cli_render.h"
 
-#include "io/outfile.h"
+#include "outfile.h"
 
 int cli_load_scene(const char *cmd, const char *path, biref_scene *scene)
 {

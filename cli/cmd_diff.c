@@ -47,51 +47,6 @@ const cli_command_spec CLI_DIFF = {
     0,
 };
 
-/* The map with the scale's legend below it (the canvas at least wide enough for the legend). */
-static int write_map_with_legend(const char *path, int w, int h, const unsigned char *map)
-{
-    const int W = w > 320 ? w : 320, H = h + CLI_DE_LEGEND_HEIGHT + 8;
-    cairo_surface_t *s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, W, H);
-    cairo_t *cr = cairo_create(s);
-    cairo_set_source_rgb(cr, 1, 1, 1);
-    cairo_paint(cr);
-    cairo_surface_flush(s);
-    unsigned char *data = cairo_image_surface_get_data(s);
-    int stride = cairo_image_surface_get_stride(s);
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++) {
-            uint32_t *px = (uint32_t *)(data + (size_t)y * stride) + x;
-            const unsigned char *c = map + 3 * ((size_t)y * w + x);
-            *px = (uint32_t)c[0] << 16 | (uint32_t)c[1] << 8 | c[2];
-        }
-    cairo_surface_mark_dirty(s);
-    cli_de_legend(cr, 6, h + 6, W - 6, "dE00:");
-    cairo_surface_flush(s);
-    /* Written through biref_png_write_rgb8 (atomic: temporary file, then rename). */
-    unsigned char *rgb = malloc((size_t)W * H * 3);
-    int rc = CLI_EXIT_OK;
-    if (!rgb || cairo_status(cr) != CAIRO_STATUS_SUCCESS) {
-        cli_error(CMD, "cannot draw the map's legend");
-        rc = CLI_EXIT_FAIL;
-    } else {
-        for (int y = 0; y < H; y++)
-            for (int x = 0; x < W; x++) {
-                uint32_t v = ((const uint32_t *)(data + (size_t)y * stride))[x];
-                unsigned char *o = rgb + 3 * ((size_t)y * W + x);
-                o[0] = (unsigned char)(v >> 16), o[1] = (unsigned char)(v >> 8), o[2] = (unsigned char)v;
-            }
-        char msg[256];
-        if (biref_png_write_rgb8(path, W, H, rgb, msg, sizeof msg) != BIREF_OK) {
-            cli_error(CMD, "%s", msg);
-            rc = CLI_EXIT_FAIL;
-        }
-    }
-    free(rgb);
-    cairo_destroy(cr);
-    cairo_surface_destroy(s);
-    return rc;
-}
-
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -158,7 +113,7 @@ int cmd_diff(int argc, char **argv)
     int rc = CLI_EXIT_OK;
     if (map) {
         if (legend) {
-            rc = write_map_with_legend(out, wa, ha, map);
+            rc = cli_de_map_write(CMD, out, wa, ha, map, "dE00:");
         } else if (biref_png_write_rgb8(out, wa, ha, map, msg, sizeof msg) != BIREF_OK) {
             cli_error(CMD, "%s", msg);
             rc = CLI_EXIT_FAIL;

@@ -20,7 +20,7 @@
 #include "fig_aliasing.h"
 #include "fig_common.h"
 #include "fig_plot.h"
-#include "io/outfile.h"
+#include "outfile.h"
 
 
 

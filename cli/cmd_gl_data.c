@@ -8,7 +8,7 @@
 
 #include "cli_render.h"
 #include "commands.h"
-#include "io/outfile.h"
+#include "outfile.h"
 #include "json_out.h"
 
 static const char *const CMD = "gl-data";

@@ -6,6 +6,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "chroma_map.h"
 #include "cli_gl.h"
 #include "cli_opts.h"
 #include "cli_polarizer.h"
@@ -22,7 +23,7 @@ enum { OPT_METHOD = 1, OPT_BACKEND, OPT_ORDER, OPT_TOLERANCE, OPT_ANTIALIAS };
 
 /* The command line, parsed. */
 typedef struct {
-    const char *out, *pfm, *scene_path;
+    const char *out, *pfm, *chroma, *scene_path;
     long width, height, threads, samples, supersample;
     int json, gl, antialias;
     biref_render_options opt;
@@ -77,6 +78,9 @@ static const cli_opt OPTS[] = {
     CLI_INT("threads", "T", F(threads), 1, 1024,
             "OpenMP threads (default: all cores); the image does not depend on T"),
     CLI_STRING("pfm", 0, "FILE", F(pfm), "also write linear sRGB floats as a PFM"),
+    CLI_STRING("chroma-map", 0, "FILE", F(chroma),
+               "also write each pixel's dE00 from the grey of its lightness (how\n"
+               "visible its colour is, from the floats) on biref diff's scale"),
     CLI_FLAG("json", 0, F(json), "print {width, height, method, samples, ms, mean_srgb, ...} on stdout"),
     {.name = "samples", .kind = CLI_OPT_INT, .value = "N", .offset = F(samples), .lo = 1, .hi = 65536,
      .old_of = "spectral-samples"},
@@ -144,6 +148,7 @@ typedef struct {
     double ms, gpu_ms, mean[3];
     biref_render_stats stats;
     char device[256];
+    cli_chroma_stats chroma; /* --chroma-map */
 } render_result;
 
 /* Renders the scene into xyz (W x H x 3). Returns a CLI exit code (one error printed unless OK). */
@@ -181,6 +186,7 @@ static int write_images(const render_args *a, float *xyz, unsigned char *rgb, re
         cli_error(CMD, "%s", msg);
         rc = CLI_EXIT_FAIL;
     }
+    if (!rc && a->chroma) rc = cli_chroma_map_write(CMD, a->chroma, res->W, res->H, xyz, &res->chroma);
     if (!rc && a->pfm) {
         /* Reuse the XYZ buffer in place: each pixel is read before it is overwritten. */
         biref_xyz_image_to_linear_srgb(xyz, n, xyz);
@@ -223,6 +229,13 @@ static int print_report(const render_args *a, const render_result *res)
         cJSON_AddNumberToObject(root, "fallback_evaluations", (double)res->stats.fallback_evals);
         cJSON_AddStringToObject(root, "output", a->out);
         if (a->pfm) cJSON_AddStringToObject(root, "pfm", a->pfm);
+        if (a->chroma) {
+            cJSON *cm = cJSON_AddObjectToObject(root, "chroma_map");
+            cJSON_AddStringToObject(cm, "path", a->chroma);
+            cJSON_AddNumberToObject(cm, "mean", res->chroma.mean);
+            cJSON_AddNumberToObject(cm, "p99", res->chroma.p99);
+            cJSON_AddNumberToObject(cm, "max", res->chroma.max);
+        }
         return json_print_and_free(root) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
     }
     /* With the image on standard output ("-o -"), the summary goes to standard error. */
@@ -233,6 +246,9 @@ static int print_report(const render_args *a, const render_result *res)
     if (opt->antialias == BIREF_ANTIALIAS_PREFILTER) fprintf(info, ", prefiltered");
     if (opt->supersample > 1) fprintf(info, ", %dx%d samples/pixel", opt->supersample, opt->supersample);
     fprintf(info, ", %.0f ms)%s%s\n", res->ms, a->pfm ? " and " : "", a->pfm ? a->pfm : "");
+    if (a->chroma)
+        fprintf(info, "wrote %s (dE00 from grey: mean %.2f, 99th percentile %.2f, max %.2f)\n", a->chroma,
+                res->chroma.mean, res->chroma.p99, res->chroma.max);
     return CLI_EXIT_OK;
 }
 
@@ -247,7 +263,8 @@ int cmd_render(int argc, char **argv)
     if (rc) return rc;
     /* Fail on a bad output path before rendering for seconds, not after. */
     const char *inputs[2] = {a.scene_path, a.out};
-    if ((rc = cli_check_output(CMD, a.out, inputs, 1)) || (a.pfm && (rc = cli_check_output(CMD, a.pfm, inputs, 2))))
+    if ((rc = cli_check_output(CMD, a.out, inputs, 1)) || (a.pfm && (rc = cli_check_output(CMD, a.pfm, inputs, 2))) ||
+        (a.chroma && (rc = cli_check_output(CMD, a.chroma, inputs, 2))))
         return rc;
     render_result res = {.W = scene.camera.width, .H = scene.camera.height};
     const size_t n = (size_t)res.W * res.H;

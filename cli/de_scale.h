@@ -18,4 +18,8 @@ void cli_de_color(double de, unsigned char rgb[3]);
 /* A labelled colour bar (title, then the bar from 0 to >= 8) in the box at (x, y), width w >= 260. */
 void cli_de_legend(cairo_t *cr, double x, double y, double w, const char *title);
 
+/* Writes MAP (w x h, 8-bit RGB on this scale) as a PNG with the legend strip below it, titled
+ * TITLE; errors as "biref CMD: error: ..." and CLI_EXIT_FAIL, else 0. */
+int cli_de_map_write(const char *cmd, const char *path, int w, int h, const unsigned char *map, const char *title);
+
 #endif

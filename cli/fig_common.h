@@ -8,7 +8,7 @@
 #include <stddef.h>
 
 #include "biref/biref.h"
-#include "io/outfile.h"
+#include "outfile.h"
 
 #define FIG_CMD "figure"
 

@@ -6,7 +6,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "io/outfile.h"
+#include "outfile.h"
 
 /* PLplot draws one page at a time (it has global state), so one output is open at a time. */
 static biref_outfile *current;

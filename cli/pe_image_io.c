@@ -3,7 +3,7 @@
  * libpng. */
 #include "pe_image_io.h"
 
-#include "io/outfile.h"
+#include "outfile.h"
 
 #include <errno.h>
 #include <math.h>

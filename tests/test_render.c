@@ -10,6 +10,7 @@
 
 #include "biref/biref.h"
 #include "test_cases.h"
+#include "test_render_util.h"
 
 static int quick;
 
@@ -33,19 +34,6 @@ static float *render(const biref_scene *sc, biref_method method, int samples, in
     if (stats) *stats = st;
     biref_renderer_destroy(r);
     return xyz;
-}
-
-static int load(const char *path, biref_scene *sc, int w, int h)
-{
-    char msg[256];
-    if (biref_scene_load(path, sc, msg, sizeof msg) != BIREF_OK) {
-        fprintf(stderr, "%s: %s\n", path, msg);
-        CHECK(0);
-        return -1;
-    }
-    sc->camera.width = w;
-    sc->camera.height = h;
-    return 0;
 }
 
 typedef struct {
@@ -89,7 +77,7 @@ static void test_examples(void)
     const int W = quick ? 24 : 48, H = quick ? 14 : 27;
     for (size_t i = 0; i < sizeof scenes / sizeof scenes[0]; i++) {
         biref_scene sc;
-        if (load(scenes[i], &sc, W, H)) continue;
+        if (test_load_scene(scenes[i], &sc, W, H)) continue;
         biref_render_stats st;
         float *a = render(&sc, BIREF_METHOD_ANALYTIC, 0, 1, &st);
         float *b = render(&sc, BIREF_METHOD_ANALYTIC, 0, 2, NULL);

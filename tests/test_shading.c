@@ -1,6 +1,6 @@
 /* The world-space entry point (biref_shade_hit): the paper's frame is recovered where world and
- * paper frame coincide, results do not depend on how the world is rotated, lossless energy is
- * conserved, bad input is refused. */
+ * paper frame coincide, results do not depend on how the world is rotated (nor, under the paper's
+ * light, on which way the normal points), lossless energy is conserved, bad input is refused. */
 #include <math.h>
 #include <string.h>
 
@@ -155,6 +155,23 @@ static void rotating_the_world_with_its_polarizers_changes_nothing(void)
     biref_shader_destroy(num);
 }
 
+/* The normal may point either way: with the paper's light (s/p relative to the plane of
+ * incidence) flipping it changes nothing. (With world-fixed polarizers it does: z = x cross y
+ * turns with the normal, so the same local optic axis describes the plate turned over about its
+ * tangent, another slab in the world.) */
+static void flipping_the_normal_changes_nothing_under_paper_light(void)
+{
+    biref_surface flipped = SURFACE;
+    for (int i = 0; i < 3; i++) flipped.normal[i] = -SURFACE.normal[i];
+    double T[3], R[3], T1[3], R1[3];
+    CHECK(biref_shade_hit(analytic, &SURFACE, view, T, R, NULL) == BIREF_OK);
+    CHECK(biref_shade_hit(analytic, &flipped, view, T1, R1, NULL) == BIREF_OK);
+    for (int j = 0; j < 3; j++) {
+        CHECK_NEAR(T1[j], T[j], 1e-12);
+        CHECK_NEAR(R1[j], R[j], 1e-12);
+    }
+}
+
 /* An edge-on ray, a tangent along the normal, non-finite input, a bad slab. */
 static void bad_hits_are_refused(void)
 {
@@ -195,6 +212,7 @@ int main(int argc, char **argv)
         {"hit_equals_analytic_spectrum_and_conserves_energy", hit_equals_analytic_spectrum_and_conserves_energy},
         {"rotating_the_world_changes_nothing", rotating_the_world_changes_nothing},
         {"rotating_the_world_with_its_polarizers_changes_nothing", rotating_the_world_with_its_polarizers_changes_nothing},
+        {"flipping_the_normal_changes_nothing_under_paper_light", flipping_the_normal_changes_nothing_under_paper_light},
         {"bad_hits_are_refused", bad_hits_are_refused},
         {"analytic_shader_refuses_world_fixed_polarizer", analytic_shader_refuses_world_fixed_polarizer},
     };

@@ -9,6 +9,7 @@
 
 #include "error.h"
 #include "render/render_internal.h"
+#include "spectral/integrator_internal.h"
 #include "render/vec3.h"
 
 void biref_render_options_default(biref_render_options *opt)
@@ -177,6 +178,96 @@ static int sample_pixel(const biref_renderer *r, int x, int y, double xyz[3], in
     return hit;
 }
 
+/* One pixel's colour into the float image; a value that is not finite or beyond float range is
+ * stored as 0 and counted. */
+static void store_pixel(const biref_renderer *r, const double c[3], float *px, long *nonfinite)
+{
+    for (int i = 0; i < 3; i++) {
+        double v = c[i] * r->exposure;
+        /* Validated scenes keep v far inside float range; anything else is reported. */
+        const int ok = isfinite(v) && fabs(v) <= FLT_MAX;
+        *nonfinite += !ok;
+        px[i] = (float)(ok ? v : 0.0);
+    }
+}
+
+/* Slab hits shaded together (biref_integrate_hits): enough for several packets of the widest
+ * kernel, small enough for a thread's stack. */
+#define HIT_PACKET 32
+
+typedef struct {
+    biref_slab_hit hit[HIT_PACKET];
+    biref_hit_frames fr[HIT_PACKET];
+    double hp[HIT_PACKET][3], dir[HIT_PACKET][3], T[HIT_PACKET][3], R[HIT_PACKET][3];
+    biref_status status[HIT_PACKET];
+    int x[HIT_PACKET], n;
+} hit_packet;
+
+static void flush_hits(const biref_renderer *r, hit_packet *p, float *row, long *fallbacks, long *nonfinite)
+{
+    if (!p->n) return;
+    biref_integrate_hits(r->integrator, p->hit, (size_t)p->n, &r->light, p->T, p->R, p->status);
+    for (int k = 0; k < p->n; k++) {
+        double c[3];
+        if (p->status[k] != BIREF_OK) {
+            biref_render_failed_hit(r, &p->fr[k], p->T[k], p->R[k]);
+            ++*fallbacks;
+        }
+        biref_render_hit_colour(r, p->hp[k], p->dir[k], &p->fr[k], p->T[k], p->R[k], c);
+        store_pixel(r, c, row + 3 * p->x[k], nonfinite);
+    }
+    p->n = 0;
+}
+
+/* A row of one sample per pixel with point look-ups, its slab hits shaded in packets. Each pixel's
+ * colour is computed as biref_render_shade_pixel's, and depends only on the pixel (a packet kernel
+ * lane never sees another lane), not on how hits are grouped. */
+static void render_row_packets(const biref_renderer *r, int y, float *row, long *slab_pixels, long *fallbacks,
+                               long *nonfinite)
+{
+    hit_packet p;
+    p.n = 0;
+    for (int x = 0; x < r->cam.width; x++) {
+        double dir[3], c[3], t;
+        biref_render_camera_ray(&r->cam, x, y, dir);
+        const render_slab *hit = biref_render_nearest_slab(r, dir, &t);
+        if (!hit) {
+            biref_render_background(r, dir, c);
+            store_pixel(r, c, row + 3 * x, nonfinite);
+            continue;
+        }
+        ++*slab_pixels;
+        const int k = p.n;
+        biref_hit_frames *fr = &p.fr[k];
+        biref_render_hit_frames(hit->normal, hit->tangent, hit->axis_world, &hit->base, dir, fr);
+        v3_axpy(r->cam.origin, t, dir, p.hp[k]);
+        memcpy(p.dir[k], dir, sizeof dir);
+        /* The slab's constants were checked when the renderer accepted them (shade.c, shade_hit). */
+        p.hit[k] = (biref_slab_hit){fr->slab, fr->theta};
+        p.x[k] = x;
+        if (++p.n == HIT_PACKET) flush_hits(r, &p, row, fallbacks, nonfinite);
+    }
+    flush_hits(r, &p, row, fallbacks, nonfinite);
+}
+
+/* A row pixel by pixel: supersampling, the prefilter's footprints, world-fixed polarizers. */
+static void render_row_samples(const biref_renderer *r, int y, float *row, long *slab_pixels, long *fallbacks,
+                               long *nonfinite)
+{
+    for (int x = 0; x < r->cam.width; x++) {
+        double dir[3], c[3];
+        int fb;
+        if (r->opt.supersample == 1 && !r->prefilter) {
+            biref_render_camera_ray(&r->cam, x, y, dir);
+            *slab_pixels += biref_render_shade_pixel(r, dir, NULL, NULL, c, &fb);
+        } else {
+            *slab_pixels += sample_pixel(r, x, y, c, &fb);
+        }
+        *fallbacks += fb;
+        store_pixel(r, c, row + 3 * x, nonfinite);
+    }
+}
+
 biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_end, int y_step, float *xyz,
                                    biref_progress_fn progress, void *progress_user, biref_render_stats *stats)
 {
@@ -185,6 +276,9 @@ biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_e
     const int rows = (y_end - y_begin + y_step - 1) / y_step;
     const int threads = r->opt.threads > 0 ? r->opt.threads : omp_get_max_threads();
     long slab_pixels = 0, fallbacks = 0, nonfinite = 0;
+    /* One sample per pixel, point look-ups and the paper's light: slab hits go to the integrator
+     * in packets (the analytic method's SIMD kernel). */
+    const int packets = r->opt.supersample == 1 && !r->prefilter && !r->world_fixed;
     int done = 0;
     /* Rows are independent and every pixel is computed the same way on any thread, so the
      * image does not depend on the thread count; dynamic scheduling balances rows that miss
@@ -193,24 +287,10 @@ biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_e
     for (int k = 0; k < rows; k++) {
         const int y = y_begin + k * y_step;
         float *row = xyz + (size_t)y * W * 3;
-        for (int x = 0; x < W; x++) {
-            double dir[3], c[3];
-            int fb;
-            if (r->opt.supersample == 1 && !r->prefilter) {
-                biref_render_camera_ray(&r->cam, x, y, dir);
-                slab_pixels += biref_render_shade_pixel(r, dir, NULL, NULL, c, &fb);
-            } else {
-                slab_pixels += sample_pixel(r, x, y, c, &fb);
-            }
-            fallbacks += fb;
-            for (int i = 0; i < 3; i++) {
-                double v = c[i] * r->exposure;
-                /* Validated scenes keep v far inside float range; anything else is reported. */
-                const int ok = isfinite(v) && fabs(v) <= FLT_MAX;
-                nonfinite += !ok;
-                row[3 * x + i] = (float)(ok ? v : 0.0);
-            }
-        }
+        if (packets)
+            render_row_packets(r, y, row, &slab_pixels, &fallbacks, &nonfinite);
+        else
+            render_row_samples(r, y, row, &slab_pixels, &fallbacks, &nonfinite);
         if (progress) {
 #pragma omp critical(biref_render_progress)
             {

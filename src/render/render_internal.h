@@ -75,6 +75,15 @@ void biref_render_radiance(const biref_renderer *r, const double from[3], const 
  * directions, for the prefilter's footprint (NULL: point phase integrals). */
 int biref_render_shade_pixel(const biref_renderer *r, const double dir[3], const double dx[3], const double dy[3],
                              double xyz[3], int *fallback);
+/* The nearest slab along the camera ray dir (NULL: none), its distance in *t. */
+const render_slab *biref_render_nearest_slab(const biref_renderer *r, const double dir[3], double *t);
+/* A pixel that hits no slab: the background through the filter. */
+void biref_render_background(const biref_renderer *r, const double dir[3], double xyz[3]);
+/* The slab's factors when its evaluation failed: a perfect mirror seen through the filter. */
+void biref_render_failed_hit(const biref_renderer *r, const biref_hit_frames *fr, double tT[3], double tR[3]);
+/* A slab pixel's colour at hit point hp from the slab's transmission and reflection factors. */
+void biref_render_hit_colour(const biref_renderer *r, const double hp[3], const double dir[3],
+                             const biref_hit_frames *fr, const double tT[3], const double tR[3], double xyz[3]);
 /* The slab's two evaluations at one hit (transmission from behind, reflection from the mirror
  * direction) in the hit's frames; non-zero when either fails (outputs then undefined). */
 int biref_render_shade_hit(const biref_renderer *r, const biref_hit_frames *f, double T_xyz[3], double R_xyz[3]);

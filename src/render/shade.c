@@ -204,10 +204,8 @@ int biref_render_shade_hit(const biref_renderer *r, const biref_hit_frames *f, d
     return shade_hit(r, f, NULL, T_xyz, R_xyz);
 }
 
-int biref_render_shade_pixel(const biref_renderer *r, const double dir[3], const double dx[3], const double dy[3],
-                             double xyz[3], int *fallback)
+const render_slab *biref_render_nearest_slab(const biref_renderer *r, const double dir[3], double *t_hit)
 {
-    *fallback = 0;
     const double *o = r->cam.origin;
     double best = INFINITY;
     const render_slab *hit = NULL;
@@ -227,43 +225,66 @@ int biref_render_shade_pixel(const biref_renderer *r, const double dir[3], const
             hit = sl;
         }
     }
-    double k_view[3]; /* light reaching the eye travels against the view ray */
+    *t_hit = best;
+    return hit;
+}
+
+void biref_render_background(const biref_renderer *r, const double dir[3], double xyz[3])
+{
+    double k_view[3], L[3]; /* light reaching the eye travels against the view ray */
     v3_scale(dir, -1.0, k_view);
+    biref_render_radiance(r, r->cam.origin, dir, L);
+    double f = background_factor(r, k_view, &r->slabs[0]);
+    v3_scale(L, f, xyz);
+}
+
+void biref_render_failed_hit(const biref_renderer *r, const biref_hit_frames *fr, double tT[3], double tR[3])
+{
+    /* A failed evaluation (grazing-angle breakdown) must not put a NaN in the image: treat the
+     * slab as a perfect mirror seen through the filter. */
+    const double *xR = fr->x_R;
+    double k_refl_in[3], p_in[3], p_out[3], C[2][2], P[2][2];
+    v3_scale(fr->mirror, -1.0, k_refl_in);
+    v3_cross(k_refl_in, xR, p_in);
+    v3_cross(fr->k_view, xR, p_out);
+    light_coherency(r, xR, p_in, C);
+    analyzer(r, xR, p_out, P);
+    double f = passthrough(C, P);
+    v3_set(tT, 0, 0, 0);
+    v3_set(tR, f, f, f);
+}
+
+void biref_render_hit_colour(const biref_renderer *r, const double hp[3], const double dir[3],
+                             const biref_hit_frames *fr, const double tT[3], const double tR[3], double xyz[3])
+{
+    double Lb[3], Lf[3];
+    biref_render_radiance(r, hp, dir, Lb);
+    biref_render_radiance(r, hp, fr->mirror, Lf);
+    /* Band-wise products: exact for grey light, an approximation for coloured light. */
+    for (int i = 0; i < 3; i++) xyz[i] = tT[i] * Lb[i] + tR[i] * Lf[i];
+}
+
+int biref_render_shade_pixel(const biref_renderer *r, const double dir[3], const double dx[3], const double dy[3],
+                             double xyz[3], int *fallback)
+{
+    *fallback = 0;
+    double best;
+    const render_slab *hit = biref_render_nearest_slab(r, dir, &best);
     if (!hit) {
-        double L[3];
-        biref_render_radiance(r, o, dir, L);
-        double f = background_factor(r, k_view, &r->slabs[0]);
-        v3_scale(L, f, xyz);
+        biref_render_background(r, dir, xyz);
         return 0;
     }
-
     double hp[3];
-    v3_axpy(o, best, dir, hp);
+    v3_axpy(r->cam.origin, best, dir, hp);
     biref_hit_frames fr;
     biref_render_hit_frames(hit->normal, hit->tangent, hit->axis_world, &hit->base, dir, &fr);
-    const double *xR = fr.x_R, *mirror = fr.mirror;
-    double k_refl_in[3];
-    v3_scale(mirror, -1.0, k_refl_in);
     double tT[3], tR[3];
     biref_opl_footprint fp;
     if (r->prefilter && dx && dy) biref_render_footprint(r, hit, dir, dx, dy, &fp);
     if (shade_hit(r, &fr, r->prefilter && dx && dy ? &fp : NULL, tT, tR)) {
-        /* A failed evaluation (grazing-angle breakdown) must not put a NaN in the image:
-         * treat the slab as a perfect mirror seen through the filter. */
         *fallback = 1;
-        double p_in[3], p_out[3], C[2][2], P[2][2];
-        v3_cross(k_refl_in, xR, p_in);
-        v3_cross(k_view, xR, p_out);
-        light_coherency(r, xR, p_in, C);
-        analyzer(r, xR, p_out, P);
-        double f = passthrough(C, P);
-        v3_set(tT, 0, 0, 0);
-        v3_set(tR, f, f, f);
+        biref_render_failed_hit(r, &fr, tT, tR);
     }
-    double Lb[3], Lf[3];
-    biref_render_radiance(r, hp, dir, Lb);
-    biref_render_radiance(r, hp, mirror, Lf);
-    /* Band-wise products: exact for grey light, an approximation for coloured light. */
-    for (int i = 0; i < 3; i++) xyz[i] = tT[i] * Lb[i] + tR[i] * Lf[i];
+    biref_render_hit_colour(r, hp, dir, &fr, tT, tR, xyz);
     return 1;
 }

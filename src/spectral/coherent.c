@@ -35,7 +35,7 @@
  * 0-90 deg) eq. 26 is off by up to 0.33 in intensity (dE00 14-41) below a 2 um round trip and
  * 0.25 (dE00 10) below 5 um; the quadrature costs ~0.14 us per sample, a few hundred samples
  * here (docs/ACCURACY.md). */
-#define COHERENT_ROUND_TRIP_NM 10000.0
+#define COHERENT_ROUND_TRIP_NM BIREF_COHERENT_ROUND_TRIP_NM
 /* Orders resolved by the quadrature: up to where the round-trip amplitude has fallen below this. */
 #define ORDER_AMPLITUDE_FLOOR 1e-3
 /* Midpoint samples per local period of the highest significant frequency at the short end of the
@@ -66,6 +66,16 @@ static double round_trip_norm(const biref_slab_state *st, double k)
         worst = fmax(worst, row);
     }
     return worst;
+}
+
+int biref_coherent_real_paths(const biref_slab_state *st)
+{
+    /* With real optical paths no leg is evanescent (no coupling test) and every round trip
+     * propagates: only the shortest round trip decides, as in biref_coherent_plan. */
+    double rt_min = INFINITY;
+    for (int x = 0; x < 2; x++)
+        for (int y = 0; y < 2; y++) rt_min = fmin(rt_min, fabs(creal(st->opl_down[x] + st->opl_up[y])));
+    return rt_min < COHERENT_ROUND_TRIP_NM;
 }
 
 const biref_numeric_plan *biref_coherent_plan(const biref_spectral *sp, const biref_slab_state *st)

@@ -3,8 +3,11 @@
 #include <complex.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "biref/integrator.h"
+#include "optics/slab_internal.h"
+#include "spectral/integrator_internal.h"
 #include "spectral/phase_prefilter.h"
 #include "spectral/spectral_internal.h"
 
@@ -24,6 +27,9 @@ struct biref_integrator {
     biref_numeric_plan *plan; /* numeric methods */
     side_worker side;
     batch_worker batch;
+    biref_simd_isa isa;          /* analytic: the packet kernel's instruction set, picked at creation */
+    biref_packet_kernel packet;  /* NULL: no packets */
+    biref_packet_hits_kernel hits;
 };
 
 void biref_integrator_options_default(biref_integrator_options *o)
@@ -76,6 +82,10 @@ static biref_status scalar_batch(const biref_integrator *it, const biref_slab_st
                                  biref_sides sides, const biref_light *lights, size_t light_stride,
                                  biref_integration *out, biref_status *status);
 
+static biref_status packet_batch(const biref_integrator *it, const biref_slab_state *states, size_t n,
+                                 biref_sides sides, const biref_light *lights, size_t light_stride,
+                                 biref_integration *out, biref_status *status);
+
 static biref_status check_options(const biref_integrator_options *o)
 {
     switch (o->method) {
@@ -108,7 +118,13 @@ biref_status biref_integrator_create(const biref_spectral *sp, const biref_integ
     it->xopts = o->expansion;
     it->batch = scalar_batch;
     switch (o->method) {
-    case BIREF_METHOD_ANALYTIC: it->side = side_analytic; break;
+    case BIREF_METHOD_ANALYTIC:
+        it->side = side_analytic;
+        it->isa = biref_simd_isa_choose();
+        it->packet = biref_simd_kernel(it->isa);
+        it->hits = biref_simd_hits_kernel(it->isa);
+        if (it->packet) it->batch = packet_batch;
+        break;
     case BIREF_METHOD_EXPANSION: it->side = side_expansion; break;
     default:
         it->side = side_numeric;
@@ -203,4 +219,113 @@ biref_status biref_integrate_batch(const biref_integrator *it, const biref_slab_
 {
     if (light_stride > 1) return BIREF_ERR_INVALID;
     return it->batch(it, states, n, sides, lights, light_stride, out, status);
+}
+
+biref_simd_isa biref_integrator_simd(const biref_integrator *it) { return it->isa; }
+
+/* Jobs per kernel call: a few packets of the widest kernel, small enough for the stack. */
+#define PACKET_CHUNK 64
+
+/* The packet kernel's jobs of up to PACKET_CHUNK states (two sides each) and whose they are. */
+typedef struct {
+    biref_packet_job jobs[2 * PACKET_CHUNK];
+    size_t owner[2 * PACKET_CHUNK], n;
+    double xyz[2 * PACKET_CHUNK][3];
+} packet_chunk;
+
+static void chunk_add(packet_chunk *c, const biref_slab_state *st, int flip, int which, size_t owner)
+{
+    c->jobs[c->n] = (biref_packet_job){st, (unsigned char)flip, (unsigned char)which};
+    c->owner[c->n++] = owner;
+}
+
+/* The packet kernel's results are checked like biref_integrate's. */
+static biref_status packet_result(const double xyz[3], double dst[3])
+{
+    memcpy(dst, xyz, 3 * sizeof(double));
+    return finite3(xyz) ? BIREF_OK : BIREF_ERR_ILLCOND;
+}
+
+static biref_status packet_batch(const biref_integrator *it, const biref_slab_state *states, size_t n,
+                                 biref_sides sides, const biref_light *lights, size_t light_stride,
+                                 biref_integration *out, biref_status *status)
+{
+    if (light_stride != 0 || !lights->sp_model || !(sides & BIREF_SIDE_BOTH) || (sides & ~BIREF_SIDE_BOTH))
+        return scalar_batch(it, states, n, sides, lights, light_stride, out, status);
+    biref_status first = BIREF_OK;
+    packet_chunk c;
+    for (size_t k0 = 0; k0 < n; k0 += PACKET_CHUNK) {
+        c.n = 0;
+        for (size_t k = k0; k < n && k < k0 + PACKET_CHUNK; k++) {
+            biref_status s = BIREF_OK;
+            if (biref_packet_eligible(it->sp, &states[k])) {
+                out[k].order_used[0] = out[k].order_used[1] = -1;
+                if (sides & BIREF_SIDE_TRANSMISSION) chunk_add(&c, &states[k], 0, BIREF_TRANSMISSION, k);
+                if (sides & BIREF_SIDE_REFLECTION) chunk_add(&c, &states[k], 0, BIREF_REFLECTION, k);
+            } else {
+                s = biref_integrate(it, &states[k], sides, lights, &out[k]);
+            }
+            if (status) status[k] = s;
+            if (s != BIREF_OK && first == BIREF_OK) first = s;
+        }
+        it->packet(it->sp, lights->w_in, lights->mask, c.jobs, c.n, c.xyz);
+        for (size_t j = 0; j < c.n; j++) {
+            size_t k = c.owner[j];
+            biref_status s = packet_result(c.xyz[j], c.jobs[j].which ? out[k].R : out[k].T);
+            if (s == BIREF_OK) continue;
+            if (status) status[k] = s;
+            if (first == BIREF_OK) first = s;
+        }
+    }
+    return first;
+}
+
+/* One hit the scalar way: transmission of st, reflection of its flip. */
+static biref_status scalar_hit(const biref_integrator *it, const biref_slab_state *st, const biref_light *light,
+                               double T[3], double R[3])
+{
+    biref_integration res;
+    biref_status s = biref_integrate(it, st, BIREF_SIDE_TRANSMISSION, light, &res);
+    if (s != BIREF_OK) return s;
+    memcpy(T, res.T, sizeof res.T);
+    biref_slab_state fl;
+    biref_slab_state_flip(st, &fl);
+    s = biref_integrate(it, &fl, BIREF_SIDE_REFLECTION, light, &res);
+    memcpy(R, res.R, sizeof res.R);
+    return s;
+}
+
+/* One hit the scalar way. */
+static biref_status scalar_slab_hit(const biref_integrator *it, const biref_slab_hit *h, const biref_light *light,
+                                    double T[3], double R[3])
+{
+    biref_slab_state st;
+    biref_status s = biref_slab_prepare_trusted(&h->slab, h->theta, &st);
+    return s != BIREF_OK ? s : scalar_hit(it, &st, light, T, R);
+}
+
+void biref_integrate_hits(const biref_integrator *it, const biref_slab_hit *hits, size_t n, const biref_light *light,
+                          double (*T)[3], double (*R)[3], biref_status *status)
+{
+    const int packets = it->hits && light->sp_model;
+    biref_packet_hit ph[PACKET_CHUNK];
+    unsigned char scalar[PACKET_CHUNK];
+    for (size_t k0 = 0; k0 < n; k0 += PACKET_CHUNK) {
+        const size_t m = n - k0 < PACKET_CHUNK ? n - k0 : PACKET_CHUNK;
+        if (packets) {
+            for (size_t k = 0; k < m; k++) {
+                const biref_slab *s = &hits[k0 + k].slab;
+                ph[k] = (biref_packet_hit){s->eta_o, s->eta_e, {0, 0, 0}, s->thickness_nm, s->eta_i,
+                                           s->eta_i * sin(hits[k0 + k].theta)}; /* eq. 1, as slab.c */
+                biref_axis_unit_unchecked(s->axis, ph[k].axis);
+            }
+            it->hits(it->sp, light->w_in, light->mask, ph, m, T + k0, R + k0, scalar);
+        }
+        for (size_t k = k0; k < k0 + m; k++) {
+            if (!packets || scalar[k - k0])
+                status[k] = scalar_slab_hit(it, &hits[k], light, T[k], R[k]);
+            else
+                status[k] = finite3(T[k]) && finite3(R[k]) ? BIREF_OK : BIREF_ERR_ILLCOND;
+        }
+    }
 }

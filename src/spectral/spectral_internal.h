@@ -8,6 +8,9 @@
 #include "biref/spectral.h"
 
 #define BIREF_COHERENT_PLANS 9
+/* Round trips shorter than this (nm of optical path) put a slab in the coherent regime
+ * (coherent.c, where the value is explained). */
+#define BIREF_COHERENT_ROUND_TRIP_NM 10000.0
 
 struct biref_spectral {
     biref_spectral_config cfg;
@@ -121,5 +124,8 @@ biref_status biref_expansion_series_polarized(const biref_spectral *sp, const bi
  * (thin slabs, evanescent legs coupling the faces; src/spectral/coherent.c), or NULL when it
  * does. */
 const biref_numeric_plan *biref_coherent_plan(const biref_spectral *sp, const biref_slab_state *st);
+/* For a state whose optical paths are all real: non-zero exactly when biref_coherent_plan
+ * returns a plan (the slab is in the coherent regime), without computing the plan. */
+int biref_coherent_real_paths(const biref_slab_state *st);
 
 #endif

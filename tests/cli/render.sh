@@ -111,6 +111,19 @@ expect_error "supersample 0" render "$good" -o "$tmpdir/p.png" "${small[@]}" --s
 expect_error "supersample too large" render "$good" -o "$tmpdir/p.png" "${small[@]}" --supersample 65
 expect_ok "diff map without legend" diff "$tmpdir/a.png" "$tmpdir/b.png" -o "$tmpdir/d2.png" --no-legend
 
+# --chroma-map: written with its statistics; a grey-lit slab without polarizers is nearly grey,
+# the crossed polarizers of the fig. 9c scene are far from it; a bad path is one error line.
+src=$(dirname "$0")/../..
+expect_ok "chroma map" render "$src/examples/fig9b.json" -o "$tmpdir/c.png" --width 32 --height 18 --quiet \
+  --chroma-map "$tmpdir/cm.png" --json
+expect_grep "chroma map in json" '"chroma_map":'
+expect_grep "fig9b nearly grey" '"p99":[[:space:]]*0\.'
+[ -s "$tmpdir/cm.png" ] || { echo "FAIL (chroma map file)"; fails=$((fails + 1)); }
+expect_ok "chroma map coloured" render "$src/examples/fig9c.json" -o "$tmpdir/c.png" --width 32 --height 18 --quiet \
+  --chroma-map "$tmpdir/cm.png" --json
+expect_grep "fig9c coloured" '"max":[[:space:]]*([1-9][0-9]|[4-9])'
+expect_error "chroma map unwritable" render "$good" -o "$tmpdir/c.png" "${small[@]}" --chroma-map /nonexistent/cm.png
+
 # bench: JSON keys, extrapolation under a tiny budget.
 expect_ok "bench json" bench --scene "$good" --width 32 --height 18 --methods analytic,numeric-8 --max-seconds 2 --json
 for key in width height threads methods method ms_per_frame ns_per_pixel extrapolated; do

@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #include "cli_common.h"
-#include "io/outfile.h"
+#include "outfile.h"
 #include "json_out.h"
 #include "study.h"
 

@@ -8,7 +8,7 @@
 #include <cjson/cJSON.h>
 
 #include "cli_common.h"
-#include "io/json_strict.h"
+#include "json_strict.h"
 #include "study.h"
 
 static void set_material(acc_material *m, const char *name, double eta_o, double eta_e, double ax, double ay,

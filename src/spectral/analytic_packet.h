@@ -1,0 +1,92 @@
+/* The analytic method's packet kernel: many slab states shaded at once in SIMD lanes.
+ *
+ * Without an evanescent mode (a slab in a surround no denser than itself, every slab of the
+ * renderer in air) the mode fields, interface coefficients and optical paths of a state are
+ * real, every leg's energy factor is exactly 1 and every interference term needs only the
+ * cosine integral S(cos kD). analytic_mixed.c's one-pass worker (eqs. 19-26 with the energy
+ * balance biref_physical_limit) then becomes branch-free real arithmetic, evaluated here for
+ * PACKET lanes (structure of arrays, double precision throughout). States in total reflection,
+ * in the coherent regime or with any complex coefficient are not eligible and stay on the
+ * scalar path.
+ *
+ * One source, analytic_packet_kernel.inc, is compiled once per instruction set (a portable
+ * baseline, AVX2 + FMA, AVX-512); the integrator picks one at creation from what the CPU
+ * supports, or from the environment variable BIREF_SIMD (baseline, avx2, avx512, scalar). */
+#ifndef BIREF_ANALYTIC_PACKET_H
+#define BIREF_ANALYTIC_PACKET_H
+
+#include <stddef.h>
+
+#include "biref/optics.h"
+#include "biref/spectral.h"
+
+/* One lane's job: the state, whether to read it lit from its other face (biref_slab_state_flip's
+ * relabelling, done while gathering) and which direction's result to return. */
+typedef struct {
+    const biref_slab_state *st;
+    unsigned char flip;
+    unsigned char which; /* BIREF_TRANSMISSION or BIREF_REFLECTION */
+} biref_packet_job;
+
+/* xyz[k] = biref_analytic_mixed(sp, job k's state (flipped if asked), which, w_in, mask), up
+ * to rounding, for n eligible jobs. */
+typedef void (*biref_packet_kernel)(const biref_spectral *sp, const double w_in[2], const double mask[2],
+                                    const biref_packet_job *jobs, size_t n, double (*xyz)[3]);
+
+/* One renderer hit: a checked slab (unit axis) seen at incidence parameter K = eta_i sin theta.
+ * The kernel prepares it (modes, both interface solves, paths) in lanes as well. */
+typedef struct {
+    double eta_o, eta_e, axis[3], thickness_nm, eta_i, K;
+} biref_packet_hit;
+
+/* T[k] and R[k] as biref_integrate_hits gives them (transmission of the hit's state, reflection
+ * of its flip), up to rounding, for the hits whose scalar[k] is 0; scalar[k] = 1 marks a hit the
+ * kernel cannot take (an evanescent mode, the optic-axis degeneracy, a near-singular interface
+ * system, the coherent regime): its T and R are undefined and it goes to the scalar path. */
+typedef void (*biref_packet_hits_kernel)(const biref_spectral *sp, const double w_in[2], const double mask[2],
+                                         const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
+                                         unsigned char *scalar);
+
+void biref_packet_hits_baseline(const biref_spectral *sp, const double w_in[2], const double mask[2],
+                                const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
+                                unsigned char *scalar);
+void biref_packet_hits_avx2(const biref_spectral *sp, const double w_in[2], const double mask[2],
+                            const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
+                            unsigned char *scalar);
+void biref_packet_hits_avx512(const biref_spectral *sp, const double w_in[2], const double mask[2],
+                              const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
+                              unsigned char *scalar);
+
+void biref_packet_analytic_baseline(const biref_spectral *sp, const double w_in[2], const double mask[2],
+                                    const biref_packet_job *jobs, size_t n, double (*xyz)[3]);
+void biref_packet_analytic_avx2(const biref_spectral *sp, const double w_in[2], const double mask[2],
+                                const biref_packet_job *jobs, size_t n, double (*xyz)[3]);
+void biref_packet_analytic_avx512(const biref_spectral *sp, const double w_in[2], const double mask[2],
+                                  const biref_packet_job *jobs, size_t n, double (*xyz)[3]);
+
+/* The instruction sets, fastest last. */
+typedef enum {
+    BIREF_SIMD_SCALAR = 0, /* no packets: every state through the scalar worker */
+    BIREF_SIMD_BASELINE,   /* generic x86-64 (SSE2), 4 lanes */
+    BIREF_SIMD_AVX2,       /* AVX2 + FMA, 4 lanes */
+    BIREF_SIMD_AVX512,     /* AVX-512F, 8 lanes */
+    BIREF_SIMD_COUNT
+} biref_simd_isa;
+
+const char *biref_simd_isa_name(biref_simd_isa isa);
+/* Can this CPU run the path? */
+int biref_simd_isa_supported(biref_simd_isa isa);
+/* The path the integrator uses: BIREF_SIMD from the environment if set to a supported name
+ * (an unknown or unsupported name falls back to the automatic choice), else the fastest one
+ * the CPU supports. */
+biref_simd_isa biref_simd_isa_choose(void);
+/* The kernel of a path (NULL for BIREF_SIMD_SCALAR). */
+biref_packet_kernel biref_simd_kernel(biref_simd_isa isa);
+biref_packet_hits_kernel biref_simd_hits_kernel(biref_simd_isa isa);
+
+/* Can the packet kernel take this state? Real coefficients and paths (no evanescent mode) and
+ * not in the coherent regime (biref_coherent_plan(sp, st) == NULL). The same for the flipped
+ * state. */
+int biref_packet_eligible(const biref_spectral *sp, const biref_slab_state *st);
+
+#endif

@@ -1,0 +1,26 @@
+/* The integrator's entry points for the library's own renderer. */
+#ifndef BIREF_INTEGRATOR_INTERNAL_H
+#define BIREF_INTEGRATOR_INTERNAL_H
+
+#include "biref/integrator.h"
+#include "spectral/analytic_packet.h"
+
+/* A renderer's slab hit: a slab that biref_slab_check accepted (the axis finite and non-zero, not
+ * necessarily unit) seen at theta in [0, pi/2). */
+typedef struct {
+    biref_slab slab;
+    double theta;
+} biref_slab_hit;
+
+/* T[k] the transmission of hit k's state (biref_slab_prepare_trusted) and R[k] the reflection
+ * of the same slab lit from its other face (biref_slab_state_flip), both under one light;
+ * status[k] the worse of the two evaluations' statuses or the set-up's (the outputs are then
+ * undefined). The analytic method prepares and shades the hits it can in packets
+ * (analytic_packet.h), the rest one by one as biref_integrate does. */
+void biref_integrate_hits(const biref_integrator *it, const biref_slab_hit *hits, size_t n, const biref_light *light,
+                          double (*T)[3], double (*R)[3], biref_status *status);
+
+/* The instruction set of the integrator's packet kernel (BIREF_SIMD_SCALAR: none). */
+biref_simd_isa biref_integrator_simd(const biref_integrator *it);
+
+#endif

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# biref accuracy runs its (angle, azimuth) states in parallel: a small study gives the same JSON on
+# 1 and on 2 threads, the timings and the thread count aside.
+set -u
+. "$(dirname "$0")/lib.sh"
+small=(accuracy --theta-max-deg 80 --theta-step-deg 40 --azimuths 2 --reference-samples 256 --check-samples 512
+       --json)
+expect_ok "1 thread" "${small[@]}" --threads 1
+mv "$tmpdir/out" "$tmpdir/t1.json"
+expect_ok "2 threads" "${small[@]}" --threads 2
+mv "$tmpdir/out" "$tmpdir/t2.json"
+if ! /usr/bin/python3 - "$tmpdir/t1.json" "$tmpdir/t2.json" <<'PY'; then
+import json, sys
+def strip(v):
+    if isinstance(v, dict):
+        return {k: strip(x) for k, x in v.items() if k not in ("elapsed_s", "threads")}
+    if isinstance(v, list):
+        return [strip(x) for x in v]
+    return v
+a, b = (strip(json.load(open(p))) for p in sys.argv[1:3])
+if a != b:
+    sys.exit("the two runs differ")
+if not a.get("materials"):
+    sys.exit("no materials in the report")
+PY
+  echo "FAIL (1 vs 2 threads)"
+  fails=$((fails + 1))
+fi
+finish

@@ -1,0 +1,243 @@
+/* The analytic method's packet kernel (src/spectral/analytic_packet.h) on every instruction set
+ * this CPU runs: which states it takes, its results against the scalar double worker
+ * (biref_analytic_mixed) on random slabs, and small renders of the examples against the scalar
+ * path (mean dE00 <= 0.02, max <= 0.5), the same for 1 and 2 threads. */
+#include <complex.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "biref/biref.h"
+#include "optics/slab_internal.h"
+#include "render/render_internal.h"
+#include "spectral/analytic_packet.h"
+#include "spectral/integrator_internal.h"
+#include "spectral/spectral_internal.h"
+#include "test_cases.h"
+
+static int quick;
+
+/* A random slab: thin to thick, weak to strong birefringence, every fourth in a denser surround
+ * (total reflection inside). */
+static void random_slab(test_rng *rng, int k, biref_slab *s, double *theta)
+{
+    test_random_axis(rng, s->axis);
+    s->eta_o = test_uniform(rng, 1.3, 1.8);
+    s->eta_e = s->eta_o + test_uniform(rng, -0.3, 0.3);
+    s->thickness_nm = exp(test_uniform(rng, log(20.0), log(5e6)));
+    s->eta_i = k % 4 == 3 ? test_uniform(rng, 1.5, 2.0) : 1.0;
+    *theta = test_uniform(rng, 0, 89.5) * M_PI / 180;
+}
+
+/* Eligible exactly when nothing is evanescent or complex and the slab is not in the coherent
+ * regime; biref_coherent_real_paths agrees with biref_coherent_plan; the flip does not change
+ * the answer. */
+static void test_eligibility(void)
+{
+    biref_spectral *sp = NULL;
+    CHECK(biref_spectral_create(NULL, &sp) == BIREF_OK);
+    test_rng rng = {0x9ac4e7u};
+    int eligible = 0, tir = 0, coherent = 0;
+    for (int k = 0; k < (quick ? 400 : 4000); k++) {
+        biref_slab s;
+        double theta;
+        random_slab(&rng, k, &s, &theta);
+        biref_slab_state st, fl;
+        if (biref_slab_prepare(&s, theta, &st) != BIREF_OK) continue;
+        biref_slab_state_flip(&st, &fl);
+        int e = biref_packet_eligible(sp, &st);
+        CHECK(e == biref_packet_eligible(sp, &fl));
+        int is_coherent = biref_coherent_plan(sp, &st) != NULL;
+        if (!st.total_reflection) CHECK(biref_coherent_real_paths(&st) == is_coherent);
+        CHECK(e == (!st.total_reflection && !is_coherent));
+        eligible += e;
+        tir += st.total_reflection;
+        coherent += !st.total_reflection && is_coherent;
+    }
+    printf("eligible %d, total reflection %d, coherent regime %d\n", eligible, tir, coherent);
+    CHECK(eligible > 0 && tir > 0 && coherent > 0);
+    biref_spectral_destroy(sp);
+}
+
+/* Every kernel against biref_analytic_mixed of the same (flipped) state, both directions, under
+ * random s/p lights. */
+static void test_kernels_vs_scalar(void)
+{
+    biref_spectral *sp = NULL;
+    CHECK(biref_spectral_create(NULL, &sp) == BIREF_OK);
+    enum { N = 203 }; /* not a multiple of the lane count: spare lanes are exercised */
+    static biref_slab_state states[N];
+    static biref_packet_job jobs[4 * N];
+    static double want[4 * N][3], got[4 * N][3];
+    test_rng rng = {0x51d0u};
+    double w_in[2] = {0.75, 0.25}, mask[2] = {1.0, 0.3};
+    size_t n = 0;
+    while (n < N) {
+        biref_slab s;
+        double theta;
+        random_slab(&rng, (int)n, &s, &theta);
+        if (biref_slab_prepare(&s, theta, &states[n]) != BIREF_OK) continue;
+        if (!biref_packet_eligible(sp, &states[n])) continue;
+        n++;
+    }
+    size_t nj = 0;
+    for (size_t k = 0; k < n; k++)
+        for (int f = 0; f < 2; f++)
+            for (int w = 0; w < 2; w++) {
+                jobs[nj] = (biref_packet_job){&states[k], (unsigned char)f, (unsigned char)w};
+                biref_slab_state fl;
+                biref_slab_state_flip(&states[k], &fl);
+                biref_analytic_mixed(sp, f ? &fl : &states[k], w, w_in, mask, want[nj]);
+                nj++;
+            }
+    for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
+        if (!biref_simd_isa_supported((biref_simd_isa)isa)) {
+            printf("%s: not supported by this CPU, not tested\n", biref_simd_isa_name((biref_simd_isa)isa));
+            continue;
+        }
+        memset(got, 0, sizeof got);
+        biref_simd_kernel((biref_simd_isa)isa)(sp, w_in, mask, jobs, nj, got);
+        double worst = 0.0;
+        for (size_t j = 0; j < nj; j++)
+            for (int b = 0; b < 3; b++) worst = fmax(worst, fabs(got[j][b] - want[j][b]));
+        printf("%s: %zu lanes, max |packet - scalar| = %.3g\n", biref_simd_isa_name((biref_simd_isa)isa), nj, worst);
+        CHECK(worst < 1e-9);
+    }
+    biref_spectral_destroy(sp);
+}
+
+/* The kernels that prepare the hits themselves, against biref_slab_prepare_trusted and
+ * biref_analytic_mixed of the state (transmission) and of its flip (reflection). A hit the kernel
+ * takes must be one the scalar path would give it (biref_packet_eligible). */
+static void test_hit_kernels_vs_scalar(void)
+{
+    biref_spectral *sp = NULL;
+    CHECK(biref_spectral_create(NULL, &sp) == BIREF_OK);
+    enum { N = 1001 };
+    static biref_packet_hit hits[N];
+    static biref_slab_state states[N];
+    static double wantT[N][3], wantR[N][3], T[N][3], R[N][3];
+    static unsigned char scalar[N];
+    test_rng rng = {0x417u};
+    double w_in[2] = {0.6, 0.4}, mask[2] = {0.2, 1.0};
+    size_t n = 0;
+    int eligible = 0;
+    while (n < N) {
+        biref_slab s;
+        double theta;
+        random_slab(&rng, (int)n, &s, &theta);
+        if (n % 50 == 7) theta = 89.99999 * M_PI / 180; /* grazing */
+        if (biref_slab_prepare_trusted(&s, theta, &states[n]) != BIREF_OK) continue;
+        hits[n] = (biref_packet_hit){s.eta_o, s.eta_e, {0, 0, 0}, s.thickness_nm, s.eta_i, s.eta_i * sin(theta)};
+        biref_axis_unit_unchecked(s.axis, hits[n].axis);
+        if (biref_packet_eligible(sp, &states[n])) {
+            biref_slab_state fl;
+            biref_slab_state_flip(&states[n], &fl);
+            biref_analytic_mixed(sp, &states[n], BIREF_TRANSMISSION, w_in, mask, wantT[n]);
+            biref_analytic_mixed(sp, &fl, BIREF_REFLECTION, w_in, mask, wantR[n]);
+            eligible++;
+        }
+        n++;
+    }
+    for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
+        if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
+        biref_simd_hits_kernel((biref_simd_isa)isa)(sp, w_in, mask, hits, n, T, R, scalar);
+        double worst = 0.0;
+        int taken = 0, declined = 0;
+        for (size_t k = 0; k < n; k++) {
+            int e = biref_packet_eligible(sp, &states[k]);
+            if (scalar[k]) {
+                declined += e;
+                continue;
+            }
+            CHECK(e);
+            taken++;
+            for (int b = 0; b < 3; b++)
+                worst = fmax(worst, fmax(fabs(T[k][b] - wantT[k][b]), fabs(R[k][b] - wantR[k][b])));
+        }
+        printf("%s: %d of %d eligible hits in lanes (%d declined), max |packet - scalar| = %.3g\n",
+               biref_simd_isa_name((biref_simd_isa)isa), taken, eligible, declined, worst);
+        CHECK(worst < 1e-9);
+        CHECK(declined <= eligible / 100);
+    }
+    biref_spectral_destroy(sp);
+}
+
+static float *render_with(const char *path, const char *isa, int threads, int w, int h)
+{
+    biref_scene sc;
+    char msg[256];
+    if (biref_scene_load(path, &sc, msg, sizeof msg) != BIREF_OK) {
+        fprintf(stderr, "%s: %s\n", path, msg);
+        return NULL;
+    }
+    sc.camera.width = w;
+    sc.camera.height = h;
+    setenv("BIREF_SIMD", isa, 1);
+    biref_render_options opt;
+    biref_render_options_default(&opt);
+    opt.threads = threads;
+    biref_renderer *r = NULL;
+    float *xyz = NULL;
+    if (biref_renderer_create(&sc, &opt, &r, msg, sizeof msg) == BIREF_OK) {
+        CHECK(!strcmp(biref_simd_isa_name(biref_integrator_simd(r->integrator)), isa));
+        xyz = malloc((size_t)w * h * 3 * sizeof *xyz);
+        if (xyz && biref_render_image(r, xyz, NULL, NULL, NULL) != BIREF_OK) CHECK(0);
+    }
+    unsetenv("BIREF_SIMD");
+    biref_renderer_destroy(r);
+    return xyz;
+}
+
+/* Small renders of every example on every path against the scalar double path. */
+static void test_renders_per_isa(void)
+{
+    const char *scenes[] = {"examples/fig9a.json", "examples/fig9b.json", "examples/fig9c.json",
+                            "examples/fig9c_analyzer45.json", "examples/default.json"};
+    const int W = quick ? 32 : 64, H = quick ? 18 : 36;
+    const size_t n = (size_t)W * H;
+    for (size_t i = 0; i < sizeof scenes / sizeof scenes[0]; i++) {
+        float *ref = render_with(scenes[i], "scalar", 2, W, H);
+        if (!ref) {
+            /* A scene the analytic method refuses (world-fixed polarizers) is not this test's. */
+            printf("%s: not rendered by the analytic method\n", scenes[i]);
+            continue;
+        }
+        for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
+            if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
+            const char *name = biref_simd_isa_name((biref_simd_isa)isa);
+            float *a = render_with(scenes[i], name, 1, W, H), *b = render_with(scenes[i], name, 2, W, H);
+            CHECK(a && b);
+            if (a && b) {
+                CHECK(memcmp(a, b, n * 3 * sizeof *a) == 0);
+                double sum = 0.0, worst = 0.0;
+                for (size_t k = 0; k < n; k++) {
+                    double x[3] = {ref[3 * k], ref[3 * k + 1], ref[3 * k + 2]};
+                    double y[3] = {a[3 * k], a[3 * k + 1], a[3 * k + 2]};
+                    double d = biref_delta_e00_xyz(x, y);
+                    sum += d;
+                    worst = fmax(worst, d);
+                }
+                printf("%s, %s: dE00 to the scalar path mean %.2g, max %.2g\n", scenes[i], name, sum / (double)n,
+                       worst);
+                CHECK(sum / (double)n <= 0.02 && worst <= 0.5);
+            }
+            free(a);
+            free(b);
+        }
+        free(ref);
+    }
+}
+
+int main(int argc, char **argv)
+{
+    quick = getenv("BIREF_TEST_QUICK") != NULL;
+    static const test_case cases[] = {
+        {"eligibility", test_eligibility},
+        {"kernels_vs_scalar_worker", test_kernels_vs_scalar},
+        {"hit_kernels_vs_scalar_set_up", test_hit_kernels_vs_scalar},
+        {"renders_per_isa_vs_scalar", test_renders_per_isa},
+    };
+    return test_run_cases("test_analytic_packet", cases, TEST_COUNT(cases), argc, argv);
+}

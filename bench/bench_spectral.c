@@ -253,8 +253,9 @@ int main(int argc, char **argv)
     if (fixed_iters > 0 && !runs_given) runs = 1;
 
     biref_spectral *sp = NULL;
-    if (biref_spectral_create(NULL, &sp) != BIREF_OK) {
-        fprintf(stderr, "bench_spectral: biref_spectral_create failed\n");
+    char why[BIREF_MSG_SIZE];
+    if (biref_spectral_create(NULL, &sp, why, sizeof why) != BIREF_OK) {
+        fprintf(stderr, "bench_spectral: %s\n", why);
         return 1;
     }
     ctx *c = calloc(1, sizeof *c);
@@ -308,8 +309,8 @@ int main(int argc, char **argv)
                         : rows[r].what == M_EXPANSION ? BIREF_METHOD_EXPANSION
                                                       : BIREF_METHOD_NUMERIC;
             io.samples = rows[r].samples;
-            if (biref_integrator_create(sp, &io, &integrator) != BIREF_OK) {
-                fprintf(stderr, "bench_spectral: cannot set up %s\n", rows[r].name);
+            if (biref_integrator_create(sp, &io, &integrator, why, sizeof why) != BIREF_OK) {
+                fprintf(stderr, "bench_spectral: cannot set up %s: %s\n", rows[r].name, why);
                 return 1;
             }
         }

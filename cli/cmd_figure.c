@@ -382,9 +382,11 @@ int cmd_figure(int argc, char **argv)
 
     biref_spectral_config cfg;
     biref_spectral_config_default(&cfg);
-    if (biref_spectral_create(&cfg, &c.sp) != BIREF_OK) return cli_error(FIG_CMD, "spectral context failed"), CLI_EXIT_FAIL;
-    if (biref_numeric_plan_create(c.sp, BIREF_GROUND_TRUTH_SAMPLES, &c.gt) != BIREF_OK)
-        return biref_spectral_destroy(c.sp), cli_error(FIG_CMD, "numeric plan failed"), CLI_EXIT_FAIL;
+    char why[BIREF_MSG_SIZE];
+    if (biref_spectral_create(&cfg, &c.sp, why, sizeof why) != BIREF_OK)
+        return cli_error(FIG_CMD, "spectral context: %s", why), CLI_EXIT_FAIL;
+    if (biref_numeric_plan_create(c.sp, BIREF_GROUND_TRUTH_SAMPLES, &c.gt, why, sizeof why) != BIREF_OK)
+        return biref_spectral_destroy(c.sp), cli_error(FIG_CMD, "numeric plan: %s", why), CLI_EXIT_FAIL;
     int rc = CLI_EXIT_OK;
     for (int i = 0; i < NFIG && rc == CLI_EXIT_OK; i++) {
         if (!sel[i]) continue;

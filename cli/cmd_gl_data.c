@@ -79,7 +79,9 @@ int cmd_gl_data(int argc, char **argv)
     int rc = cli_check_writable(CMD, out);
     if (rc) return rc;
     biref_spectral *sp = NULL;
-    if (biref_spectral_create(NULL, &sp) != BIREF_OK) return cli_error(CMD, "cannot build the look-up table"), CLI_EXIT_FAIL;
+    char why[BIREF_MSG_SIZE];
+    if (biref_spectral_create(NULL, &sp, why, sizeof why) != BIREF_OK)
+        return cli_error(CMD, "cannot build the look-up table: %s", why), CLI_EXIT_FAIL;
 
     cJSON *presets = cJSON_CreateObject();
     for (int i = first_arg; i < argc && !rc; i++) {

@@ -19,7 +19,7 @@ static const char *const CMD = "photoelastic";
 static int mono_tint(double lambda, double tint[3])
 {
     biref_cmf_band band;
-    if (biref_cmf_band_init(&band, BIREF_CMF_CIE1931, 380.0, 780.0) != BIREF_OK) return -1;
+    if (biref_cmf_band_init(&band, BIREF_CMF_CIE1931, 380.0, 780.0, NULL, 0) != BIREF_OK) return -1;
     double lam[3], rgb[3];
     biref_cmf_band_eval(&band, lambda, lam);
     biref_xyz_to_linear_srgb(lam, rgb);
@@ -134,8 +134,9 @@ static int prepare(pe_args *a, pe_run *run)
     }
     const char *inputs[3] = {a->grid_path, a->ext.nodes_path, a->ext.boundary_path};
     if (a->out && (rc = cli_check_output(CMD, a->out, inputs, 3))) return rc;
-    if (a->light == BIREF_PE_WHITE && biref_spectral_create(NULL, &run->sp) != BIREF_OK)
-        return cli_error(CMD, "cannot create the spectral tables"), CLI_EXIT_FAIL;
+    char why[BIREF_MSG_SIZE];
+    if (a->light == BIREF_PE_WHITE && biref_spectral_create(NULL, &run->sp, why, sizeof why) != BIREF_OK)
+        return cli_error(CMD, "cannot create the spectral tables: %s", why), CLI_EXIT_FAIL;
     if (a->json) run->root = cJSON_CreateObject();
     /* Square pixels: the longer side of the frame gets --size pixels. */
     const double *fr = run->field.frame;
@@ -155,12 +156,13 @@ static int write_png(const pe_args *a, pe_run *run, const pe_ext_ctx *ectx)
     float *xyz = malloc(npx * 3 * sizeof *xyz);
     unsigned char *rgb = malloc(npx * 3);
     int rc = CLI_EXIT_OK;
+    char why[BIREF_MSG_SIZE];
     double t0 = biref_wall_seconds();
     if (!xyz || !rgb) {
         cli_error(CMD, "out of memory for a %d x %d picture", io->width, io->height);
         rc = CLI_EXIT_FAIL;
-    } else if (biref_pe_render(&run->setup, run->sp, &run->field, io, xyz) != BIREF_OK) {
-        cli_error(CMD, "rendering failed");
+    } else if (biref_pe_render(&run->setup, run->sp, &run->field, io, xyz, why, sizeof why) != BIREF_OK) {
+        cli_error(CMD, "%s", why);
         rc = CLI_EXIT_FAIL;
     }
     double ms = 1e3 * (biref_wall_seconds() - t0);

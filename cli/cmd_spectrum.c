@@ -255,26 +255,20 @@ static int compute(const spectrum_args *a, spectrum_result *res)
     if (s != BIREF_OK) return cli_error(CMD, "%s", biref_status_string(s)), CLI_EXIT_FAIL;
 
     biref_spectral *sp = NULL;
-    s = biref_spectral_create(&a->cfg, &sp);
-    /* The range passed its own checks, so INVALID here means a band the CMFs do not cover. */
-    if (s == BIREF_ERR_INVALID) {
-        double lo = 0, hi = 0;
-        (void)biref_cmf_domain(a->cfg.cmf, &lo, &hi);
-        return cli_error(CMD, "--range-nm: %g-%g nm is not covered by the %s colour-matching functions (%g-%g nm)",
-                         a->cfg.lambda_min_nm, a->cfg.lambda_max_nm, biref_cmf_kind_name(a->cfg.cmf), lo, hi),
-               CLI_EXIT_USAGE;
-    }
-    if (s != BIREF_OK) return cli_error(CMD, "spectral context: %s", biref_status_string(s)), CLI_EXIT_FAIL;
+    char why[BIREF_MSG_SIZE];
+    s = biref_spectral_create(&a->cfg, &sp, why, sizeof why);
+    if (s == BIREF_ERR_INVALID) return cli_error(CMD, "--range-nm: %s", why), CLI_EXIT_USAGE;
+    if (s != BIREF_OK) return cli_error(CMD, "spectral context: %s", why), CLI_EXIT_FAIL;
     biref_integrator_options io;
     biref_integrator_options_default(&io);
     io.method = a->method;
     if (a->method == BIREF_METHOD_NUMERIC) io.samples = res->n_samples;
     io.expansion = a->eopts;
     biref_integrator *it = NULL;
-    s = biref_integrator_create(sp, &io, &it);
+    s = biref_integrator_create(sp, &io, &it, why, sizeof why);
     if (s != BIREF_OK) {
         biref_spectral_destroy(sp);
-        return cli_error(CMD, "numeric plan: %s", biref_status_string(s)), CLI_EXIT_FAIL;
+        return cli_error(CMD, "%s", why), CLI_EXIT_FAIL;
     }
     biref_light light;
     make_light(a, &light);

@@ -1,5 +1,5 @@
-/* biref figure aliasing: for each scene made to alias, (a) one sample per pixel with point
- * look-ups, (b) one sample per pixel prefiltered, (c) 4x4 super-sampled point look-ups, each
+/* biref figure aliasing: for each scene made to alias (and the photoelastic disk near a load),
+ * (a) one sample per pixel with point look-ups, (b) one sample per pixel prefiltered, (c) 4x4 super-sampled point look-ups, each
  * against a 32x32 super-sampled reference of the same rows, with their ΔE00 maps and costs. */
 #include "fig_aliasing.h"
 
@@ -22,6 +22,7 @@ typedef struct {
     int width, height;        /* full frame */
     double y0, y1;            /* the measured rows, as fractions of the height */
     int shown;                /* in aliasing.png (a band of a few rows is only in the CSV) */
+    int pe;                   /* 0: the scene file; else the photoelastic disk in this light (render_pe) */
 } alias_case;
 
 /* Crops of rows (the reference costs 1024 samples per pixel): fig. 9c as framed for the paper's
@@ -29,11 +30,14 @@ typedef struct {
  * edge (geometric edges are super-sampling's job, not the prefilter's); fig. 9c at full HD, a
  * band of rows through the rings. */
 static const alias_case CASES[] = {
-    {"fig. 9c, 320x180 (rows 60-119)", "fig9c.json", 320, 180, 60.0 / 180, 120.0 / 180, 1},
-    {"thick slab, grazing, 320x180 (rows 100-159)", "aliasing/thick_grazing.json", 320, 180, 100.0 / 180, 160.0 / 180, 1},
-    {"fig. 9c, 1920x1080 (rows 440-447)", "fig9c.json", 1920, 1080, 440.0 / 1080, 448.0 / 1080, 0},
+    {"fig. 9c, 320x180 (rows 60-119)", "fig9c.json", 320, 180, 60.0 / 180, 120.0 / 180, 1, 0},
+    {"thick slab, grazing, 320x180 (rows 100-159)", "aliasing/thick_grazing.json", 320, 180, 100.0 / 180, 160.0 / 180, 1, 0},
+    {"fig. 9c, 1920x1080 (rows 440-447)", "fig9c.json", 1920, 1080, 440.0 / 1080, 448.0 / 1080, 0, 0},
+    {"photoelastic disk below a load, white light (128x128 of 512x512)", NULL, 128, 128, 0.0, 1.0, 1,
+     1 + BIREF_PE_WHITE},
+    {"photoelastic disk below a load, 589 nm (128x128 of 512x512)", NULL, 128, 128, 0.0, 1.0, 1, 1 + BIREF_PE_MONO},
 };
-enum { NCASES = 3, NVAR = 4, REF = 3 };
+enum { NCASES = 5, NVAR = 4, REF = 3 };
 
 typedef struct {
     const char *name;
@@ -70,6 +74,42 @@ static double render_rows(const biref_scene *sc, biref_antialias aa, int K, int 
     return t;
 }
 
+/* The disk of `biref photoelastic --preset disk` with its defaults (polycarbonate, radius 25 mm,
+ * 6 mm thick, 500 N, dark-field circular polariscope) at the pixel pitch of its default 512-pixel
+ * picture (pitch times div), the W x H window whose top edge runs 1 mm below the upper load point,
+ * where the fringes crowd. */
+static double render_pe(biref_pe_light_kind light, biref_antialias aa, int K, int threads, int W, int H, int div,
+                        float *xyz)
+{
+    biref_pe_setup s;
+    memset(&s, 0, sizeof s);
+    (void)biref_pe_material_preset("polycarbonate", &s.material);
+    s.thickness = 6e-3;
+    s.eta_i = 1.0;
+    s.light = light;
+    s.lambda_nm = 589.0;
+    biref_pe_polariscope_make(BIREF_PE_CIRCULAR, BIREF_PE_DARK, 0.0, &s.pol);
+    biref_pe_field f;
+    char msg[256];
+    biref_spectral *sp = NULL;
+    if (biref_pe_field_disk(&f, 25e-3, s.thickness, 500.0, msg, sizeof msg) != BIREF_OK)
+        return cli_error(CMD, "disk: %s", msg), -1.0;
+    if (biref_spectral_create(NULL, &sp, msg, sizeof msg) != BIREF_OK)
+        return cli_error(CMD, "cannot create the spectral tables: %s", msg), -1.0;
+    const double pitch = div * (f.frame[1] - f.frame[0]) / 512.0, top = 25e-3 - 1e-3;
+    f.frame[0] = -0.5 * W * pitch, f.frame[1] = 0.5 * W * pitch;
+    f.frame[2] = top - H * pitch, f.frame[3] = top;
+    biref_pe_image_opts io = {W, H, K, threads, {1, 1, 1}, 0.0};
+    fprintf(stderr, "biref figure: aliasing: photoelastic %dx%d, %dx%d samples\n", W, H, K, K);
+    double t0 = biref_wall_seconds();
+    biref_status st = aa == BIREF_ANTIALIAS_PREFILTER ? biref_pe_render_prefiltered(&s, sp, &f, &io, xyz, msg, sizeof msg)
+                                                      : biref_pe_render(&s, sp, &f, &io, xyz, msg, sizeof msg);
+    double t = biref_wall_seconds() - t0;
+    biref_spectral_destroy(sp);
+    if (st != BIREF_OK) return cli_error(CMD, "photoelastic picture: %s", msg), -1.0;
+    return t;
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -85,9 +125,10 @@ typedef struct {
 static int run_case(const alias_case *ac, const char *scenes, int quick, int threads, FILE *csv, case_result *res)
 {
     char path[4096], msg[256];
-    snprintf(path, sizeof path, "%s/%s", scenes, ac->file);
+    if (!ac->pe) snprintf(path, sizeof path, "%s/%s", scenes, ac->file);
     biref_scene sc;
-    if (biref_scene_load(path, &sc, msg, sizeof msg) != BIREF_OK) return cli_error(CMD, "%s: %s", path, msg), 2;
+    if (!ac->pe && biref_scene_load(path, &sc, msg, sizeof msg) != BIREF_OK)
+        return cli_error(CMD, "%s: %s", path, msg), 2;
     const int div = quick ? 4 : 1, W = ac->width / div, H = ac->height / div;
     sc.camera.width = W;
     sc.camera.height = H;
@@ -108,7 +149,8 @@ static int run_case(const alias_case *ac, const char *scenes, int quick, int thr
     for (int v = 0; v < NVAR && !rc; v++) {
         int K = VARIANTS[v].K ? VARIANTS[v].K : K_ref;
         fprintf(stderr, "biref figure: aliasing: %s: %s (%dx%d samples)\n", ac->label, VARIANTS[v].name, K, K);
-        res->secs[v] = render_rows(&sc, VARIANTS[v].aa, K, threads, y0, y1, xyz[v], "aliasing");
+        res->secs[v] = ac->pe ? render_pe((biref_pe_light_kind)(ac->pe - 1), VARIANTS[v].aa, K, threads, W, H, div, xyz[v])
+                              : render_rows(&sc, VARIANTS[v].aa, K, threads, y0, y1, xyz[v], "aliasing");
         if (res->secs[v] < 0) rc = 1;
         else biref_xyz_image_to_srgb8(xyz[v] + (size_t)3 * W * y0, npx, res->rgb[v]);
     }

@@ -90,7 +90,9 @@ static biref_status build_program(gl_context *g, char *msg, size_t msg_len)
 
 static biref_status upload_table(gl_context *g, char *msg, size_t msg_len)
 {
-    if (biref_spectral_create(NULL, &g->sp) != BIREF_OK) return fail(msg, msg_len, "cannot build the look-up table");
+    char why[BIREF_MSG_SIZE];
+    if (biref_spectral_create(NULL, &g->sp, why, sizeof why) != BIREF_OK)
+        return fail(msg, msg_len, "cannot build the look-up table: %s", why);
     biref_gl_table_info info;
     biref_gl_table(g->sp, &info, NULL);
     float *tex = malloc((size_t)info.width * info.height * 4 * sizeof *tex);

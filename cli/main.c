@@ -50,6 +50,9 @@ static void usage(FILE *f)
     fprintf(f, "\nOptions:\n"
                "  -h, --help     this list\n"
                "  -V, --version  the version of biref\n"
+               "\nEvery command also takes --progress (progress on stderr from the start) and -q, --quiet\n"
+               "(none); by default a long job shows a bar on a terminal, otherwise a line every few\n"
+               "seconds once it has run 2 s.\n"
                "\nRun 'biref COMMAND --help' for the options of a command; the grammar they share is in\n"
                "docs/CLI.md.\n");
 }

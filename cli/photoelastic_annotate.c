@@ -25,7 +25,7 @@ static int key_orders(const pe_ext_ctx *c)
     float *v = malloc((size_t)W * H * sizeof *v);
     if (!v) return 4;
     int top = 1;
-    if (biref_pe_render_map(c->setup, c->field, BIREF_PE_MAP_FRINGE_ORDER, c->lambda_N, W, H, c->io->threads, v) ==
+    if (biref_pe_render_map(c->setup, c->field, BIREF_PE_MAP_FRINGE_ORDER, c->lambda_N, W, H, c->io->threads, v, NULL, 0) ==
         BIREF_OK) {
         size_t n = 0;
         for (size_t i = 0; i < (size_t)W * H; i++)

@@ -23,8 +23,8 @@ static int write_map(const pe_ext *e, const pe_ext_ctx *c)
     if (!v) return cli_error(CMD, "out of memory for a %d x %d map", W, H), CLI_EXIT_FAIL;
     char msg[512];
     int rc = CLI_EXIT_OK;
-    if (biref_pe_render_map(c->setup, c->field, k, c->lambda_N, W, H, c->io->threads, v) != BIREF_OK) {
-        cli_error(CMD, "map failed");
+    if (biref_pe_render_map(c->setup, c->field, k, c->lambda_N, W, H, c->io->threads, v, msg, sizeof msg) != BIREF_OK) {
+        cli_error(CMD, "%s", msg);
         free(v);
         return CLI_EXIT_FAIL;
     }
@@ -82,9 +82,10 @@ static int write_pfm_picture(const pe_ext_ctx *c)
         cli_error(CMD, "out of memory for a %d x %d picture", W, H);
         goto done;
     }
-    if (biref_pe_render(c->setup, c->sp, c->field, c->io, xyz) != BIREF_OK) {
+    char why[BIREF_MSG_SIZE];
+    if (biref_pe_render(c->setup, c->sp, c->field, c->io, xyz, why, sizeof why) != BIREF_OK) {
         rc = CLI_EXIT_FAIL;
-        cli_error(CMD, "rendering failed");
+        cli_error(CMD, "%s", why);
         goto done;
     }
     const int mono = c->setup->light == BIREF_PE_MONO;
@@ -145,8 +146,8 @@ static int write_phase_steps(const pe_ext *e, const pe_ext_ctx *c)
         biref_pe_polariscope_stepped(steps[k].qwp_deg * M_PI / 180.0, steps[k].analyzer_deg * M_PI / 180.0, &s.pol);
         char path[4096], msg[512];
         step_name(path, sizeof path, c->out, k + 1);
-        if (biref_pe_render(&s, c->sp, c->field, &io, xyz) != BIREF_OK) {
-            cli_error(CMD, "rendering failed");
+        if (biref_pe_render(&s, c->sp, c->field, &io, xyz, msg, sizeof msg) != BIREF_OK) {
+            cli_error(CMD, "%s", msg);
             rc = CLI_EXIT_FAIL;
             break;
         }

@@ -136,7 +136,7 @@ static void one_pass_mixed_equals_analytic_then_mix(void)
 
 int main(int argc, char **argv)
 {
-    if (biref_spectral_create(NULL, &sp) != BIREF_OK) return 1;
+    if (biref_spectral_create(NULL, &sp, NULL, 0) != BIREF_OK) return 1;
     static const test_case cases[] = {
         {"trusted_setup_equals_checked_setup", trusted_setup_equals_checked_setup},
         {"real_interface_solve_equals_complex_solve", real_interface_solve_equals_complex_solve},

@@ -148,7 +148,7 @@ static void prefilter_reduces_aliasing_expansion(void)
 
 int main(int argc, char **argv)
 {
-    if (biref_spectral_create(NULL, &sp) != BIREF_OK || biref_phase_prefilter_create(sp, &pf) != BIREF_OK) return 1;
+    if (biref_spectral_create(NULL, &sp, NULL, 0) != BIREF_OK || biref_phase_prefilter_create(sp, &pf) != BIREF_OK) return 1;
     static const test_case cases[] = {
         {"box_average_matches_quadrature_of_point_table", box_average_matches_quadrature_of_point_table},
         {"zero_width_box_is_the_point_lookup", zero_width_box_is_the_point_lookup},

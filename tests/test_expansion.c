@@ -147,7 +147,7 @@ static void quarter_wave_plate_turns_linear_light_circular(void)
     cfg.lambda_min_nm = 549.95;
     cfg.lambda_max_nm = 550.05;
     biref_spectral *narrow = NULL;
-    CHECK(biref_spectral_create(&cfg, &narrow) == BIREF_OK);
+    CHECK(biref_spectral_create(&cfg, &narrow, NULL, 0) == BIREF_OK);
     double dn = 0.01, d = 550.0 / 4 / dn;
     biref_slab s = {1.5, 1.5 + dn, {1, 0, 0}, d, 1.505}; /* axis along s; near index-matched */
     biref_slab_state st;
@@ -347,8 +347,8 @@ static void bad_stokes_vectors_are_refused(void)
 int main(int argc, char **argv)
 {
     quick = test_quick();
-    if (biref_spectral_create(NULL, &sp) != BIREF_OK) return 1;
-    if (biref_numeric_plan_create(sp, BIREF_GROUND_TRUTH_SAMPLES, &gt) != BIREF_OK) return 1;
+    if (biref_spectral_create(NULL, &sp, NULL, 0) != BIREF_OK) return 1;
+    if (biref_numeric_plan_create(sp, BIREF_GROUND_TRUTH_SAMPLES, &gt, NULL, 0) != BIREF_OK) return 1;
     static const test_case cases[] = {
         {"thin_slabs_match_ground_truth", thin_slabs_match_ground_truth},
         {"arbitrary_polarizers_match_numeric_integration", arbitrary_polarizers_match_numeric_integration},

@@ -121,7 +121,7 @@ static void round_trip(int n, double ib, double ia, double *worst_N, double *wor
     for (int k = 0; k < n; k++) {
         img[k] = malloc((size_t)W * H * sizeof(float));
         biref_pe_polariscope_stepped(st[k].qwp_deg * M_PI / 180, st[k].analyzer_deg * M_PI / 180, &s.pol);
-        CHECK(biref_pe_render(&s, NULL, &f, &io, xyz) == BIREF_OK);
+        CHECK(biref_pe_render(&s, NULL, &f, &io, xyz, NULL, 0) == BIREF_OK);
         for (int i = 0; i < W * H; i++) img[k][i] = (float)(ib + ia * xyz[3 * i + 1]);
     }
     float *N = malloc((size_t)W * H * sizeof *N), *phi = malloc((size_t)W * H * sizeof *phi);

@@ -503,8 +503,11 @@ static void white_fast_path_matches_expansion(void)
  * comparison's sequence. */
 static void white_fast_path_matches_ground_truth(void)
 {
-    biref_numeric_plan *gt = NULL;
-    CHECK(biref_numeric_plan_create(sp, BIREF_GROUND_TRUTH_SAMPLES, &gt) == BIREF_OK);
+    biref_integrator_options go;
+    biref_integrator_options_default(&go);
+    go.method = BIREF_METHOD_GROUND_TRUTH;
+    biref_integrator *gt = NULL;
+    CHECK(biref_integrator_create(sp, &go, &gt, NULL, 0) == BIREF_OK);
     if (!gt) return;
     test_rng rng = {WHITE_SEED};
     for (int t = 0; t < WHITE_EXPANSION_POINTS; t++) {
@@ -525,7 +528,7 @@ static void white_fast_path_matches_ground_truth(void)
         random_principal(&rng, 3000e-9 / (s.material.C_per_Pa * s.thickness), &p);
         double f[3], g[3];
         biref_pe_shade(&s, sp, &p, f);
-        CHECK(biref_pe_shade_numeric(&s, gt, &p, g) == BIREF_OK);
+        CHECK(biref_pe_shade_integrated(&s, gt, &p, 0.0, g) == BIREF_OK);
         double de = biref_delta_e00_xyz(f, g);
         worst_gt = fmax(worst_gt, de);
         sum_gt += de;
@@ -534,7 +537,7 @@ static void white_fast_path_matches_ground_truth(void)
     printf("white: fast vs ground truth (16384 samples, %d points): mean dE00 %.4f, max %.4f\n", count,
            sum_gt / count, worst_gt);
     CHECK(worst_gt <= 1.0);
-    biref_numeric_plan_destroy(gt);
+    biref_integrator_destroy(gt);
 }
 
 /* Dark fringes along the disk's vertical diameter, found in a rendered column, against the
@@ -550,7 +553,7 @@ static void disk_fringes_on_the_diameter_at_closed_form_orders(void)
     const int H = 1024;
     biref_pe_image_opts o = {1, H, 1, 0, {1, 1, 1}, 0};
     float *img = malloc(sizeof(float) * 3 * H);
-    CHECK(biref_pe_render(&s, NULL, &f, &o, img) == BIREF_OK);
+    CHECK(biref_pe_render(&s, NULL, &f, &o, img, NULL, 0) == BIREF_OK);
     const double Cc = s.material.C_per_Pa, lam = 589e-9;
     const double sy = (f.frame[3] - f.frame[2]) / H;
     double worst = 0;
@@ -593,7 +596,7 @@ static void isoclinics(biref_pe_light_kind light)
     const int W = 96;
     biref_pe_image_opts o = {W, W, 1, 2, {1, 1, 1}, 0};
     float *img = malloc(sizeof(float) * 3 * W * W);
-    CHECK(biref_pe_render(&s, sp, &f, &o, img) == BIREF_OK);
+    CHECK(biref_pe_render(&s, sp, &f, &o, img, NULL, 0) == BIREF_OK);
     double worst = 0, dark = 0;
     int n_iso = 0;
     for (int j = 0; j < W; j++)
@@ -721,9 +724,9 @@ static void render_is_thread_independent_and_hole_shows_background(void)
     const int W = 90, H = 60;
     float *a = malloc(sizeof(float) * 3 * W * H), *b = malloc(sizeof(float) * 3 * W * H);
     biref_pe_image_opts o = {W, H, 2, 1, {1, 1, 1}, 0};
-    CHECK(biref_pe_render(&s, sp, &f, &o, a) == BIREF_OK);
+    CHECK(biref_pe_render(&s, sp, &f, &o, a, NULL, 0) == BIREF_OK);
     o.threads = 2;
-    CHECK(biref_pe_render(&s, sp, &f, &o, b) == BIREF_OK);
+    CHECK(biref_pe_render(&s, sp, &f, &o, b, NULL, 0) == BIREF_OK);
     CHECK(memcmp(a, b, sizeof(float) * 3 * W * H) == 0);
     /* The hole shows the light-field background: white E. */
     size_t c = 3 * ((size_t)(H / 2) * W + W / 2);
@@ -735,7 +738,7 @@ static void render_is_thread_independent_and_hole_shows_background(void)
 
 int main(int argc, char **argv)
 {
-    if (biref_spectral_create(NULL, &sp) != BIREF_OK) return 1;
+    if (biref_spectral_create(NULL, &sp, NULL, 0) != BIREF_OK) return 1;
     static const test_case cases[] = {
         {"material_presets", material_presets},
         {"disk_centre_rim_and_resultant", disk_centre_rim_and_resultant},

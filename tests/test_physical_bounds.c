@@ -106,8 +106,8 @@ static void compute_samples(void)
     samples = calloc((size_t)N_KINDS * per_kind, sizeof *samples);
     biref_numeric_plan *gt = NULL, *n32 = NULL;
     CHECK(samples != NULL);
-    CHECK(biref_numeric_plan_create(sp, BIREF_GROUND_TRUTH_SAMPLES, &gt) == BIREF_OK);
-    CHECK(biref_numeric_plan_create(sp, 32, &n32) == BIREF_OK);
+    CHECK(biref_numeric_plan_create(sp, BIREF_GROUND_TRUTH_SAMPLES, &gt, NULL, 0) == BIREF_OK);
+    CHECK(biref_numeric_plan_create(sp, 32, &n32, NULL, 0) == BIREF_OK);
     if (!samples || !gt || !n32) goto done;
     test_rng rng = {20261123};
     for (int kind = 0; kind < N_KINDS; kind++)
@@ -271,7 +271,7 @@ static void coherent_regime_matches_ground_truth(void)
 
 int main(int argc, char **argv)
 {
-    if (biref_spectral_create(NULL, &sp) != BIREF_OK) return 1;
+    if (biref_spectral_create(NULL, &sp, NULL, 0) != BIREF_OK) return 1;
     static const test_case cases[] = {
         {"every_method_stays_within_physical_bounds", every_method_stays_within_physical_bounds},
         {"polarized_intensity_stays_within_0_and_1", polarized_intensity_stays_within_0_and_1},

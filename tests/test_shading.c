@@ -206,7 +206,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "shader: %s\n", msg);
         return 1;
     }
-    if (biref_spectral_create(NULL, &sp) != BIREF_OK) return 1;
+    if (biref_spectral_create(NULL, &sp, NULL, 0) != BIREF_OK) return 1;
     static const test_case cases[] = {
         {"paper_frame_is_recovered", paper_frame_is_recovered},
         {"hit_equals_analytic_spectrum_and_conserves_energy", hit_equals_analytic_spectrum_and_conserves_energy},

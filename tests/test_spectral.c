@@ -72,7 +72,7 @@ static void every_method_is_band_normalised(void)
     int ns[4] = {1, 3, 8, 1000};
     for (int k = 0; k < 4; k++) {
         biref_numeric_plan *plan = NULL;
-        CHECK(biref_numeric_plan_create(sp, ns[k], &plan) == BIREF_OK);
+        CHECK(biref_numeric_plan_create(sp, ns[k], &plan, NULL, 0) == BIREF_OK);
         biref_spectrum out;
         biref_spectrum_numeric(plan, &st, &out);
         for (int j = 0; j < 3; j++) {
@@ -98,8 +98,8 @@ static void numeric_integration_converges_to_ground_truth(void)
 {
     biref_numeric_plan *gt = NULL, *p[4] = {NULL};
     int ns[4] = {32, 128, 512, 2048};
-    CHECK(biref_numeric_plan_create(sp, BIREF_GROUND_TRUTH_SAMPLES, &gt) == BIREF_OK);
-    for (int k = 0; k < 4; k++) CHECK(biref_numeric_plan_create(sp, ns[k], &p[k]) == BIREF_OK);
+    CHECK(biref_numeric_plan_create(sp, BIREF_GROUND_TRUTH_SAMPLES, &gt, NULL, 0) == BIREF_OK);
+    for (int k = 0; k < 4; k++) CHECK(biref_numeric_plan_create(sp, ns[k], &p[k], NULL, 0) == BIREF_OK);
     test_rng rng = {77};
     double err[4] = {0};
     for (int t = 0; t < (quick ? 5 : 30); t++) {
@@ -161,7 +161,7 @@ static void energy_term_is_the_incoherent_path_sum(void)
 static void analytic_approximation_matches_ground_truth_on_thin_slabs(void)
 {
     biref_numeric_plan *gt = NULL;
-    CHECK(biref_numeric_plan_create(sp, BIREF_GROUND_TRUTH_SAMPLES, &gt) == BIREF_OK);
+    CHECK(biref_numeric_plan_create(sp, BIREF_GROUND_TRUTH_SAMPLES, &gt, NULL, 0) == BIREF_OK);
     test_rng rng = {2024};
     double sum = 0, worst = 0, sum_r = 0, worst_r = 0;
     int n = quick ? 10 : 150;
@@ -196,19 +196,19 @@ static void analytic_approximation_matches_ground_truth_on_thin_slabs(void)
 static void bad_input_is_refused(void)
 {
     biref_numeric_plan *p = NULL;
-    CHECK(biref_numeric_plan_create(sp, 0, &p) == BIREF_ERR_INVALID && p == NULL);
-    CHECK(biref_numeric_plan_create(sp, -5, &p) == BIREF_ERR_INVALID);
+    CHECK(biref_numeric_plan_create(sp, 0, &p, NULL, 0) == BIREF_ERR_INVALID && p == NULL);
+    CHECK(biref_numeric_plan_create(sp, -5, &p, NULL, 0) == BIREF_ERR_INVALID);
     biref_spectral_config cfg;
     biref_spectral_config_default(&cfg);
     cfg.lambda_min_nm = 700, cfg.lambda_max_nm = 380;
     biref_spectral *bad = NULL;
-    CHECK(biref_spectral_create(&cfg, &bad) == BIREF_ERR_INVALID && bad == NULL);
+    CHECK(biref_spectral_create(&cfg, &bad, NULL, 0) == BIREF_ERR_INVALID && bad == NULL);
     biref_spectral_config_default(&cfg);
     cfg.lambda_max_nm = NAN;
-    CHECK(biref_spectral_create(&cfg, &bad) == BIREF_ERR_INVALID);
+    CHECK(biref_spectral_create(&cfg, &bad, NULL, 0) == BIREF_ERR_INVALID);
     biref_spectral_config_default(&cfg);
     cfg.cmf = (biref_cmf_kind)7;
-    CHECK(biref_spectral_create(&cfg, &bad) == BIREF_ERR_INVALID);
+    CHECK(biref_spectral_create(&cfg, &bad, NULL, 0) == BIREF_ERR_INVALID);
     biref_method m;
     CHECK(biref_method_from_name("magic", &m) == BIREF_ERR_INVALID);
     CHECK(biref_method_from_name("ground-truth", &m) == BIREF_OK && m == BIREF_METHOD_GROUND_TRUTH);
@@ -217,7 +217,7 @@ static void bad_input_is_refused(void)
 int main(int argc, char **argv)
 {
     quick = test_quick();
-    if (biref_spectral_create(NULL, &sp) != BIREF_OK) return 1;
+    if (biref_spectral_create(NULL, &sp, NULL, 0) != BIREF_OK) return 1;
     static const test_case cases[] = {
         {"phase_table_matches_direct_quadrature", phase_table_matches_direct_quadrature},
         {"every_method_is_band_normalised", every_method_is_band_normalised},

@@ -22,7 +22,7 @@ static biref_status create(biref_cmf_kind cmf, double lo, double hi)
 {
     const biref_spectral_config cfg = config(cmf, lo, hi);
     biref_spectral *sp = NULL;
-    biref_status s = biref_spectral_create(&cfg, &sp);
+    biref_status s = biref_spectral_create(&cfg, &sp, NULL, 0);
     CHECK((s == BIREF_OK) == (sp != NULL));
     biref_spectral_destroy(sp);
     return s;
@@ -64,8 +64,8 @@ static void widest_range_stays_close_to_ground_truth(void)
     const biref_spectral_config cfg = config(BIREF_CMF_WYMAN2013, 360, 830);
     biref_spectral *sp = NULL;
     biref_numeric_plan *gt = NULL;
-    CHECK(biref_spectral_create(&cfg, &sp) == BIREF_OK);
-    CHECK(biref_numeric_plan_create(sp, BIREF_GROUND_TRUTH_SAMPLES, &gt) == BIREF_OK);
+    CHECK(biref_spectral_create(&cfg, &sp, NULL, 0) == BIREF_OK);
+    CHECK(biref_numeric_plan_create(sp, BIREF_GROUND_TRUTH_SAMPLES, &gt, NULL, 0) == BIREF_OK);
     biref_slab slab = {1.55, 1.56, {0.3, 0.9, 0.1}, 20000, 1.0};
     biref_slab_state st;
     CHECK(biref_slab_prepare(&slab, 0.4, &st) == BIREF_OK);
@@ -86,7 +86,7 @@ static void widest_range_stays_close_to_ground_truth(void)
 static void non_finite_optical_path_is_an_error(void)
 {
     biref_spectral *sp = NULL;
-    CHECK(biref_spectral_create(NULL, &sp) == BIREF_OK);
+    CHECK(biref_spectral_create(NULL, &sp, NULL, 0) == BIREF_OK);
     biref_slab slab = {1.5, 1.6, {0, 1, 0}, 1000, 1.0};
     biref_slab_state st;
     CHECK(biref_slab_prepare(&slab, 0.2, &st) == BIREF_OK);
@@ -104,7 +104,7 @@ static void non_finite_optical_path_is_an_error(void)
         io.method = methods[m];
         if (methods[m] == BIREF_METHOD_NUMERIC) io.samples = 64;
         biref_integrator *it = NULL;
-        CHECK(biref_integrator_create(sp, &io, &it) == BIREF_OK);
+        CHECK(biref_integrator_create(sp, &io, &it, NULL, 0) == BIREF_OK);
         if (it) CHECK(biref_integrate_spectrum(it, &st, &x) == BIREF_ERR_ILLCOND);
         biref_integrator_destroy(it);
     }

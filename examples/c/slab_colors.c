@@ -28,7 +28,9 @@ int main(void)
                        .thickness_nm = 1.15e6, .eta_i = 1.0};
     double theta = 30.0 * pi / 180.0;
 
-    char msg[256];
+    /* Functions that can fail for several reasons write one line into a buffer the caller owns;
+     * the per-sample ones (biref_slab_jones, biref_slab_prepare) leave the reason to the check. */
+    char msg[BIREF_MSG_SIZE];
     biref_status st = biref_slab_check(&slab, msg, sizeof msg);
     if (st != BIREF_OK) {
         fprintf(stderr, "slab_colors: %s\n", msg);
@@ -50,9 +52,9 @@ int main(void)
     biref_spectral_config cfg;
     biref_spectral_config_default(&cfg);
     biref_spectral *sp = NULL;
-    st = biref_spectral_create(&cfg, &sp);
+    st = biref_spectral_create(&cfg, &sp, msg, sizeof msg);
     if (st != BIREF_OK) {
-        fprintf(stderr, "slab_colors: %s\n", biref_status_string(st));
+        fprintf(stderr, "slab_colors: %s\n", msg);
         return 1;
     }
     biref_slab_state state;

@@ -15,7 +15,9 @@ int main()
     biref_slab slab{1.775, 1.231, {0.084, 0.979, -0.187}, 1.15e6, 1.0};
     biref_jones T, R;
     if (biref_status st = biref_slab_jones(&slab, theta, 550.0, &T, &R); st != BIREF_OK) {
-        std::fprintf(stderr, "shade_hit: %s\n", biref_status_string(st));
+        char msg[BIREF_MSG_SIZE] = "";
+        biref_slab_check(&slab, msg, sizeof msg); // the reason, if the slab is the problem
+        std::fprintf(stderr, "shade_hit: %s\n", msg[0] ? msg : biref_status_string(st));
         return 1;
     }
 

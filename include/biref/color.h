@@ -57,7 +57,8 @@ BIREF_API const char *biref_cmf_kind_name(biref_cmf_kind kind);
  * table's interpolant is integrated piecewise-linearly, the Wyman fit with
  * erf(). BIREF_ERR_INVALID for an unknown kind, non-finite bounds or
  * lmin >= lmax. Integrals may be 0 (a range outside the table). */
-BIREF_API biref_status biref_cmf_band_integrals(biref_cmf_kind kind, double lmin, double lmax, double integral[3]);
+BIREF_API biref_status biref_cmf_band_integrals(biref_cmf_kind kind, double lmin, double lmax, double integral[3],
+                                                char *msg, size_t msg_len);
 
 /* The wavelengths the colour-matching data covers: the CIE 1931 table 380-780 nm; the Wyman fit
  * 360-830 nm (the CIE's full range; the fit is a fit of data on it). A spectral context
@@ -76,7 +77,8 @@ typedef struct {
 
 /* BIREF_ERR_INVALID as for biref_cmf_band_integrals, or if any integral is
  * not > 0 (then there is nothing to normalise by). */
-BIREF_API biref_status biref_cmf_band_init(biref_cmf_band *band, biref_cmf_kind kind, double lmin, double lmax);
+BIREF_API biref_status biref_cmf_band_init(biref_cmf_band *band, biref_cmf_kind kind, double lmin, double lmax,
+                                           char *msg, size_t msg_len);
 
 /* Λ_j(λ) = cmf_j(λ) / integral[j] for λ in [lmin, lmax], 0 outside, in 1/nm.
  * ∫ Λ_j dλ = 1, so a flat spectrum integrates to (1, 1, 1). */

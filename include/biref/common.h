@@ -44,6 +44,28 @@ typedef enum {
     BIREF_ERR_ILLCOND = 5   /* method cannot give a trustworthy answer here */
 } biref_status;
 
+/* The one error convention.
+ *
+ * Every function that can fail returns a biref_status; biref_status_string names the code.
+ *
+ * A function whose failure can have more than one cause (a parser, a constructor checking a
+ * configuration, a slab or material check) also takes, as its last two parameters, a buffer the
+ * caller owns: (char *msg, size_t msg_len). On failure it writes one line there saying why (no
+ * trailing newline, always NUL-terminated, truncated if the buffer is short); NULL or 0 means the
+ * reason is not wanted. On success the buffer is left alone. BIREF_MSG_SIZE bytes hold every
+ * message the library writes, except for file paths beyond a few hundred bytes.
+ *
+ * The functions called per sample (per pixel or per wavelength: biref_slab_prepare,
+ * biref_slab_jones*, biref_medium_modes, biref_interface_solve, biref_integrate*,
+ * biref_shade_hit, biref_hit_frames_make, the light constructors) take no buffer: each of their
+ * codes has one documented meaning, and BIREF_ERR_INVALID there means that the arguments fail
+ * the named check function (biref_slab_check, biref_theta_check, biref_medium_check), which
+ * says why.
+ *
+ * The message belongs to the call: there is no global or thread-local error state, and any
+ * number of threads may call the library at once. */
+#define BIREF_MSG_SIZE 512
+
 BIREF_API const char *biref_status_string(biref_status s);
 
 #ifdef __cplusplus

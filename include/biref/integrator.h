@@ -45,9 +45,10 @@ BIREF_API void biref_integrator_options_default(biref_integrator_options *o);
 typedef struct biref_integrator biref_integrator;
 
 /* BIREF_ERR_INVALID for an unknown method, samples out of range or expansion options out of
- * their domain (order > BIREF_EXPANSION_MAX_ORDER; adaptive with tolerance outside (0, 1)). */
+ * their domain (order > BIREF_EXPANSION_MAX_ORDER; adaptive with tolerance outside (0, 1)),
+ * BIREF_ERR_NOMEM; one line saying which in msg (common.h). */
 BIREF_API biref_status biref_integrator_create(const biref_spectral *sp, const biref_integrator_options *o,
-                                     biref_integrator **out);
+                                               biref_integrator **out, char *msg, size_t msg_len);
 BIREF_API void biref_integrator_destroy(biref_integrator *it);
 BIREF_API biref_method biref_integrator_method(const biref_integrator *it);
 /* Samples per integral of the numeric methods (ground truth: BIREF_GROUND_TRUTH_SAMPLES), 0 else. */
@@ -61,7 +62,8 @@ typedef struct {
 /* Integrates a prepared slab for the requested sides under `light`. BIREF_ERR_INVALID for a
  * light the method cannot handle (the analytic method takes the paper's s/p model only) or no
  * side; BIREF_ERR_ILLCOND where the method breaks down or the result is not finite (the caller
- * decides what to show). No allocation; the expansion needs about 250 KB of stack. */
+ * decides what to show). No allocation; the expansion needs about 250 KB of stack. A per-sample
+ * entry point: no message buffer (common.h), each code has the one meaning given here. */
 BIREF_API biref_status biref_integrate(const biref_integrator *it, const biref_slab_state *st, biref_sides sides,
                              const biref_light *light, biref_integration *out);
 

@@ -61,6 +61,8 @@ typedef struct {
     int evanescent_o, evanescent_e;
 } biref_modes;
 
+/* BIREF_ERR_INVALID: the medium fails biref_medium_check (which says why) or K is negative or
+ * not finite. */
 BIREF_API biref_status biref_medium_modes(const biref_medium *m, double K, biref_modes *out);
 
 /* Fresnel coefficients of a plane interface between two media (appendix A),
@@ -75,6 +77,8 @@ typedef struct {
     biref_complex t_up[2][2];   /* incident from below -> transmitted up, upper medium */
 } biref_interface;
 
+/* BIREF_ERR_INVALID: a medium fails biref_medium_check or K is out of range; BIREF_ERR_SINGULAR:
+ * the boundary-condition system is singular. */
 BIREF_API biref_status biref_interface_solve(const biref_medium *upper, const biref_medium *lower, double K,
                                              biref_interface *out);
 
@@ -114,6 +118,9 @@ typedef struct {
     int total_reflection;       /* some mode inside is evanescent (K >= K_max) */
 } biref_slab_state;
 
+/* Per-sample entry point (no message buffer, see common.h): BIREF_ERR_INVALID when the slab
+ * fails biref_slab_check or the angle biref_theta_check (call them for the reason),
+ * BIREF_ERR_SINGULAR when an interface's boundary-condition system is singular. */
 BIREF_API biref_status biref_slab_prepare(const biref_slab *slab, double theta_rad, biref_slab_state *st);
 
 /* The same slab lit from the other face: the state in the frame rotated by 180 degrees about z
@@ -129,13 +136,16 @@ BIREF_API void biref_slab_state_flip(const biref_slab_state *in, biref_slab_stat
  * Either output may be NULL. */
 BIREF_API void biref_slab_jones_at(const biref_slab_state *st, double lambda_nm, biref_jones *T, biref_jones *R);
 
-/* One-call convenience: prepare + evaluate. */
+/* One-call convenience: prepare + evaluate. The codes of biref_slab_prepare, and
+ * BIREF_ERR_INVALID for a wavelength that is not a positive finite number. */
 BIREF_API biref_status biref_slab_jones(const biref_slab *slab, double theta_rad, double lambda_nm, biref_jones *T,
                                         biref_jones *R);
 
 /* Independent reference: 4x4 Berreman transfer matrix of the same slab,
  * eigen-decomposed numerically (LAPACK). Same planes and bases as above.
- * Returns BIREF_ERR_ILLCOND when evanescent growth makes it untrustworthy. */
+ * Returns BIREF_ERR_ILLCOND when evanescent growth makes it untrustworthy, BIREF_ERR_SINGULAR
+ * when LAPACK finds the eigenvector matrix singular, BIREF_ERR_INVALID for arguments that fail
+ * biref_slab_check, biref_theta_check or a positive finite wavelength. */
 BIREF_API biref_status biref_slab_jones_tmm(const biref_slab *slab, double theta_rad, double lambda_nm, biref_jones *T,
                                             biref_jones *R);
 

@@ -222,8 +222,8 @@ BIREF_API double biref_pe_retardation_oblique_nm(const biref_pe_setup *s, const 
 BIREF_API void biref_pe_shade(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p, double xyz[3]);
 
 /* The same point by the general machinery, for verification: biref_slab_prepare on
- * biref_pe_slab_at, then white: biref_spectrum_expansion_polarized (every interference term,
- * adaptive order); mono: |e J_T P|^2 of the closed-form Jones matrix at lambda_nm, averaged over
+ * biref_pe_slab_at, then white: the expansion integrator (every interference term, adaptive
+ * order; the same as biref_pe_shade_integrated with a BIREF_METHOD_EXPANSION integrator); mono: |e J_T P|^2 of the closed-form Jones matrix at lambda_nm, averaged over
  * `thickness_jitter` uniform thickness samples spanning thickness_span_nm (0 or 1 sample: the
  * coherent value at the nominal thickness). */
 BIREF_API biref_status biref_pe_shade_general(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p,
@@ -232,22 +232,19 @@ BIREF_API biref_status biref_pe_shade_general(const biref_pe_setup *s, const bir
 /* Oblique viewing (the plate turned about its x axis by theta, so that the plane of incidence
  * contains the plate's y axis and normal; polarizer and analyzer stay perpendicular to the line
  * of sight, their angles measured from s = x towards p). The general path on biref_pe_slab_best:
- * white light by biref_spectrum_expansion_polarized; monochromatic by the path expansion to order
- * 2, paths coherent within an order and orders added in intensity (docs, "Coherence"). An
- * approximation beyond normal incidence: docs/PHOTOELASTICITY.md, "How it degrades". */
+ * monochromatic by the path expansion to order 2, paths coherent within an order and orders added
+ * in intensity (docs, "Coherence"). An approximation beyond normal incidence:
+ * docs/PHOTOELASTICITY.md, "How it degrades". Deprecated for white light: it builds an expansion
+ * integrator per call; create one integrator and call biref_pe_shade_integrated instead. */
 BIREF_API biref_status biref_pe_shade_oblique(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p,
                                               double theta_rad, double xyz[3]);
-
-/* The same point by numeric spectral integration (white light only). */
-BIREF_API biref_status biref_pe_shade_numeric(const biref_pe_setup *s, const biref_numeric_plan *plan,
-                                              const biref_pe_principal *p, double xyz[3]);
 
 /* The polariscope as a light (integrator.h): its coherency C and analyzer P. */
 BIREF_API void biref_pe_light(const biref_pe_polariscope *pol, biref_light *out);
 
-/* White light through any integrator, at normal incidence (theta 0: biref_pe_slab_at, the model
- * of biref_pe_shade_general and biref_pe_shade_numeric) or oblique (biref_pe_slab_best, as
- * biref_pe_shade_oblique). The analytic method refuses a polariscope's light (it handles the
+/* The one integration interface of photoelasticity: white light through any integrator, at
+ * normal incidence (theta 0: biref_pe_slab_at, the model of biref_pe_shade_general) or oblique
+ * (biref_pe_slab_best, as biref_pe_shade_oblique; the pictures' tilted path). The analytic method refuses a polariscope's light (it handles the
  * paper's s/p model only). BIREF_ERR_INVALID for monochromatic light. */
 BIREF_API biref_status biref_pe_shade_integrated(const biref_pe_setup *s, const biref_integrator *it,
                                                  const biref_pe_principal *p, double theta_rad, double xyz[3]);
@@ -258,11 +255,13 @@ BIREF_API biref_status biref_pe_shade_integrated(const biref_pe_setup *s, const 
 
 typedef struct {
     int width, height;  /* pixels; the frame is mapped with square pixels if the caller chose so */
-    int supersample;    /* k x k samples per pixel (box filter), 1..8 */
+    int supersample;    /* k x k samples per pixel (box filter), 1..BIREF_PE_MAX_SUPERSAMPLE */
     int threads;        /* OpenMP threads, 0 = default */
     double tint[3];     /* mono only: XYZ the intensity multiplies (white E = (1,1,1)) */
     double tilt;        /* 0: normal view (fast path); else biref_pe_shade_oblique at this angle (rad) */
 } biref_pe_image_opts;
+
+#define BIREF_PE_MAX_SUPERSAMPLE 64
 
 /* Renders field f seen through setup s: XYZ floats (3 per pixel, row-major, top row = frame's
  * ymax), white E = (1,1,1); the frame (plate coordinates) fills the image, so with a tilt the
@@ -270,7 +269,15 @@ typedef struct {
  * light. Deterministic and independent of the thread count. BIREF_ERR_INVALID for a tilt outside
  * [0, 89 deg]. */
 BIREF_API biref_status biref_pe_render(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_field *f,
-                                       const biref_pe_image_opts *opt, float *xyz);
+                                       const biref_pe_image_opts *opt, float *xyz, char *msg, size_t msg_len);
+
+/* The same picture with each sample's fringes averaged over its footprint in retardation (the
+ * retardation's change to the next sample; docs/ANTIALIASING.md, "Photoelastic pictures"): no
+ * moire where the fringes crowd, at one sample per pixel. Normal view only (a tilt renders as
+ * biref_pe_render). */
+BIREF_API biref_status biref_pe_render_prefiltered(const biref_pe_setup *s, const biref_spectral *sp,
+                                                   const biref_pe_field *f, const biref_pe_image_opts *opt, float *xyz,
+                                                   char *msg, size_t msg_len);
 
 /* ------------------------------------------------------------------------ */
 /* Nodes from a finite-element export                                        */
@@ -343,7 +350,8 @@ BIREF_API double biref_pe_map_value(biref_pe_map_kind k, const biref_pe_setup *s
 /* The map on the pixel grid of biref_pe_render (one sample at each pixel centre, top row =
  * frame's ymax), NAN where there is no material. */
 BIREF_API biref_status biref_pe_render_map(const biref_pe_setup *s, const biref_pe_field *f, biref_pe_map_kind k,
-                                 double lambda_nm, int width, int height, int threads, float *out);
+                                 double lambda_nm, int width, int height, int threads, float *out, char *msg,
+                                 size_t msg_len);
 
 /* ------------------------------------------------------------------------ */
 /* Phase stepping                                                            */

@@ -154,7 +154,8 @@ typedef struct {
  * XYZ is band-normalised (white E = (1,1,1)) and already multiplied by the exposure.
  * Deterministic: every pixel is independent of the thread count. No allocation per
  * pixel. stats and progress may be NULL. BIREF_ERR_ILLCOND if a pixel came out non-finite
- * (stored as 0; never expected for a validated scene). */
+ * (stored as 0; never expected for a validated scene); BIREF_ERR_INVALID for NULL arguments or
+ * rows outside the image. One meaning per code, so no message buffer (common.h). */
 BIREF_API biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_end, int y_step, float *xyz,
                                              biref_progress_fn progress, void *progress_user, biref_render_stats *stats);
 

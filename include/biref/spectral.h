@@ -29,7 +29,8 @@ typedef struct biref_spectral biref_spectral;
 /* BIREF_ERR_INVALID for an unknown cmf, a non-finite or inverted range (min >= max, min <= 0),
  * a range outside the colour-matching data (biref_cmf_domain) or one where a band integrates to
  * zero. */
-BIREF_API biref_status biref_spectral_create(const biref_spectral_config *cfg, biref_spectral **out);
+BIREF_API biref_status biref_spectral_create(const biref_spectral_config *cfg, biref_spectral **out, char *msg,
+                                             size_t msg_len);
 BIREF_API void biref_spectral_destroy(biref_spectral *sp);
 BIREF_API const biref_cmf_band *biref_spectral_band(const biref_spectral *sp);
 
@@ -57,7 +58,9 @@ BIREF_API const char *biref_method_name(biref_method m);
  * normalised so that a flat spectrum gives exactly (1, 1, 1). Immutable, shareable. */
 typedef struct biref_numeric_plan biref_numeric_plan;
 
-BIREF_API biref_status biref_numeric_plan_create(const biref_spectral *sp, int samples, biref_numeric_plan **out);
+/* BIREF_ERR_INVALID for samples outside 1..2^24 (one-line reason in msg). */
+BIREF_API biref_status biref_numeric_plan_create(const biref_spectral *sp, int samples, biref_numeric_plan **out,
+                                                 char *msg, size_t msg_len);
 BIREF_API void biref_numeric_plan_destroy(biref_numeric_plan *plan);
 BIREF_API int biref_numeric_plan_samples(const biref_numeric_plan *plan);
 
@@ -107,7 +110,8 @@ BIREF_API void biref_expansion_opts_default(biref_expansion_opts *o);
  * paths beyond are added incoherently in closed form. Detected intensity for incident coherency
  * C and analyzer P (NULL = none), which = BIREF_TRANSMISSION or BIREF_REFLECTION. *order_used
  * (the pair order) may be NULL. No allocation; about 250 KB of stack per call (threads created
- * with small stacks need at least 512 KB). */
+ * with small stacks need at least 512 KB). BIREF_ERR_INVALID for options outside their domain
+ * (biref_integrator_create says which), BIREF_ERR_ILLCOND for a non-finite result. */
 BIREF_API biref_status biref_spectrum_expansion_polarized(const biref_spectral *sp, const biref_slab_state *st, int which,
                                                           const biref_complex C[2][2], const biref_complex P[2][2],
                                                           const biref_expansion_opts *opts, double xyz[3], int *order_used);

@@ -20,7 +20,7 @@ __all__ = ["slab", "spectrum", "render", "photoelastic", "BirefError", "library_
 __version__ = "0.1.0"
 
 _SP = ("s", "p")
-_MSG = 320
+_MSG = 512  # BIREF_MSG_SIZE: the library writes one line of at most this into a caller-owned buffer
 
 
 class BirefError(RuntimeError):
@@ -41,6 +41,15 @@ def _check(s, what):
 def _msg_error(s, msg, exc=ValueError):
     text = _ffi.string(msg).decode(errors="replace") or _status(s)
     raise (exc if s == _lib.BIREF_ERR_INVALID else BirefError)(text)
+
+
+def _call(what, fn, *args):
+    """Calls a library function that takes a message buffer last; raises with its reason."""
+    msg = _ffi.new("char[]", _MSG)
+    s = fn(*args, msg, _MSG)
+    if s != _lib.BIREF_OK:
+        text = _ffi.string(msg).decode(errors="replace") or _status(s)
+        raise (ValueError if s == _lib.BIREF_ERR_INVALID else BirefError)(f"{what}: {text}")
 
 
 def _thickness_nm(thickness_mm, thickness_um, thickness_nm):
@@ -318,14 +327,12 @@ def spectrum(eta_o, eta_e, axis, thickness_mm=None, thickness_um=None, thickness
     cfg.cmf = kind[0]
     cfg.lambda_min_nm, cfg.lambda_max_nm = (float(x) for x in range_nm)
     spp = _ffi.new("biref_spectral **")
-    s = _lib.biref_spectral_create(cfg, spp)
-    if s != _lib.BIREF_OK:
-        raise ValueError(f"range_nm: no usable band {tuple(range_nm)} for {cmf}")
+    _call("range_nm", _lib.biref_spectral_create, cfg, spp)
     sp = _ffi.gc(spp[0], _lib.biref_spectral_destroy)
     plan = None
     if n_samples:
         pp = _ffi.new("biref_numeric_plan **")
-        _check(_lib.biref_numeric_plan_create(sp, n_samples, pp), "numeric plan")
+        _call("numeric plan", _lib.biref_numeric_plan_create, sp, n_samples, pp)
         plan = _ffi.gc(pp[0], _lib.biref_numeric_plan_destroy)
 
     thetas = _np.asarray(theta_deg, dtype=float)
@@ -567,11 +574,11 @@ def photoelastic(preset="disk", stress_grid=None, thickness_mm=None, radius_mm=N
     sp = _ffi.NULL
     if light == "white":
         spp = _ffi.new("biref_spectral **")
-        _check(_lib.biref_spectral_create(_ffi.NULL, spp), "spectral tables")
+        _call("spectral tables", _lib.biref_spectral_create, _ffi.NULL, spp)
         sp = _ffi.gc(spp[0], _lib.biref_spectral_destroy)
     n = io.width * io.height
     xyz = _ffi.new("float[]", n * 3)
-    _check(_lib.biref_pe_render(setup, sp, fld, io, xyz), "photoelastic render")
+    _call("photoelastic render", _lib.biref_pe_render, setup, sp, fld, io, xyz)
     img = _convert(xyz, n, "xyz")
     if light == "white" and exposure != 1.0:
         img = img * exposure

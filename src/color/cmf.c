@@ -19,6 +19,7 @@
 
 #include "biref/color.h"
 #include "color/cie1931_table.h"
+#include "error.h"
 
 /* ---- CIE 1931 table ------------------------------------------------------ */
 
@@ -176,24 +177,30 @@ const char *biref_cmf_kind_name(biref_cmf_kind kind)
     return NULL;
 }
 
-biref_status biref_cmf_band_integrals(biref_cmf_kind kind, double lmin, double lmax, double integral[3])
+biref_status biref_cmf_band_integrals(biref_cmf_kind kind, double lmin, double lmax, double integral[3], char *msg,
+                                      size_t msg_len)
 {
-    if (!integral || !isfinite(lmin) || !isfinite(lmax) || !(lmin < lmax)) return BIREF_ERR_INVALID;
+    if (!integral) return biref_fail(msg, msg_len, "no output");
+    if (!isfinite(lmin) || !isfinite(lmax) || !(lmin < lmax))
+        return biref_fail(msg, msg_len, "the band %g-%g nm is empty or not finite", lmin, lmax);
     switch (kind) {
     case BIREF_CMF_CIE1931: table_integrals(lmin, lmax, integral); return BIREF_OK;
     case BIREF_CMF_WYMAN2013: wss_integrals(lmin, lmax, integral); return BIREF_OK;
     }
-    return BIREF_ERR_INVALID;
+    return biref_fail(msg, msg_len, "unknown colour-matching functions (%d)", (int)kind);
 }
 
-biref_status biref_cmf_band_init(biref_cmf_band *band, biref_cmf_kind kind, double lmin, double lmax)
+biref_status biref_cmf_band_init(biref_cmf_band *band, biref_cmf_kind kind, double lmin, double lmax, char *msg,
+                                 size_t msg_len)
 {
-    if (!band) return BIREF_ERR_INVALID;
+    if (!band) return biref_fail(msg, msg_len, "no output");
     double integral[3];
-    biref_status st = biref_cmf_band_integrals(kind, lmin, lmax, integral);
+    biref_status st = biref_cmf_band_integrals(kind, lmin, lmax, integral, msg, msg_len);
     if (st != BIREF_OK) return st;
     for (int j = 0; j < 3; j++)
-        if (!(integral[j] > 0.0)) return BIREF_ERR_INVALID;
+        if (!(integral[j] > 0.0))
+            return biref_fail(msg, msg_len, "the %s %c function is zero over %g-%g nm (nothing to normalise by)",
+                              biref_cmf_kind_name(kind), "xyz"[j], lmin, lmax);
     band->kind = kind;
     band->lmin_nm = lmin;
     band->lmax_nm = lmax;

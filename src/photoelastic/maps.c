@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "biref/photoelastic.h"
+#include "error.h"
 
 static const char *const NAMES[BIREF_PE_MAP_COUNT] = {"fringe-order", "isoclinic", "retardation", "sigma1", "sigma2"};
 static const char *const UNITS[BIREF_PE_MAP_COUNT] = {"1", "deg", "nm", "MPa", "MPa"};
@@ -42,11 +43,16 @@ double biref_pe_map_value(biref_pe_map_kind k, const biref_pe_setup *s, double l
 }
 
 biref_status biref_pe_render_map(const biref_pe_setup *s, const biref_pe_field *f, biref_pe_map_kind k,
-                                 double lambda_nm, int width, int height, int threads, float *out)
+                                 double lambda_nm, int width, int height, int threads, float *out, char *msg,
+                                 size_t msg_len)
 {
-    if (!s || !f || !out || width < 1 || height < 1 || (unsigned)k >= BIREF_PE_MAP_COUNT) return BIREF_ERR_INVALID;
-    if (!(lambda_nm > 0 && isfinite(lambda_nm))) return BIREF_ERR_INVALID;
-    if (!(f->frame[1] > f->frame[0] && f->frame[3] > f->frame[2])) return BIREF_ERR_INVALID;
+    if (!s || !f || !out) return biref_fail(msg, msg_len, "no setup, field or output");
+    if (width < 1 || height < 1) return biref_fail(msg, msg_len, "%d x %d pixels: the map needs at least 1 x 1", width, height);
+    if ((unsigned)k >= BIREF_PE_MAP_COUNT) return biref_fail(msg, msg_len, "unknown map (%d)", (int)k);
+    if (!(lambda_nm > 0 && isfinite(lambda_nm)))
+        return biref_fail(msg, msg_len, "wavelength %g nm: expected a positive number", lambda_nm);
+    if (!(f->frame[1] > f->frame[0] && f->frame[3] > f->frame[2]))
+        return biref_fail(msg, msg_len, "the field's frame is empty");
     const double x0 = f->frame[0], sx = (f->frame[1] - f->frame[0]) / width;
     const double y1 = f->frame[3], sy = (f->frame[3] - f->frame[2]) / height;
     const int nt = threads > 0 ? threads : omp_get_max_threads();

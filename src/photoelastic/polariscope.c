@@ -5,6 +5,8 @@
 #include <stdlib.h>
 
 #include "biref/photoelastic.h"
+#include "photoelastic/pe_footprint.h"
+#include "photoelastic/shade_internal.h"
 
 biref_status biref_pe_polariscope_custom(const double stokes[4], const double complex P[2][2],
                                          biref_pe_polariscope *out)
@@ -88,6 +90,30 @@ static inline void airy_coeffs(double n, double eta, double *tau, double *rho2)
 
 void biref_pe_shade(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p, double xyz[3])
 {
+    biref_pe_shade_footprint(s, sp, NULL, 0.0, p, xyz);
+}
+
+/* <t_e conj t_o> of monochromatic light, each term e^{ik D} averaged over a box of width
+ * (2m + 1) w around D = (2m + 1) delta: times sinc((2m + 1) a), a = k w / 2. z = e^{ik delta};
+ * sin((2m + 1) a) by the recurrence sin((n + 2) a) = 2 cos(2a) sin(n a) - sin((n - 2) a). */
+static double complex mono_cross_box(double tt, double q, double complex z, double w_nm, double lambda_nm)
+{
+    const double a = M_PI * w_nm / lambda_nm, sa = sin(a), c2 = 1.0 - 2.0 * sa * sa;
+    double complex sum = 0, zm = z;
+    const double complex z2 = z * z;
+    double wm = tt, s_prev = -sa, s_cur = sa;
+    for (int m = 0; m <= PE_MAX_ORDER && wm >= 1e-7 * tt; m++, wm *= q, zm *= z2) {
+        const double n_a = (2.0 * m + 1.0) * a;
+        sum += wm * zm * (n_a > 1e-8 ? s_cur / n_a : 1.0);
+        const double s_next = 2.0 * c2 * s_cur - s_prev;
+        s_prev = s_cur, s_cur = s_next;
+    }
+    return sum;
+}
+
+void biref_pe_shade_footprint(const biref_pe_setup *s, const biref_spectral *sp, const biref_phase_prefilter *pf,
+                              double width_nm, const biref_pe_principal *p, double xyz[3])
+{
     /* Principal directions a (axis, e-mode) and b (o-mode) in the s/p basis. cos phi, sin phi by
      * the half-angle formulas: phi in (-pi/2, pi/2] has cos phi >= 0 and sin phi of the sign of
      * sin 2 phi (the sign of a or b never matters: each appears twice below). */
@@ -137,7 +163,8 @@ void biref_pe_shade(const biref_pe_setup *s, const biref_spectral *sp, const bir
         /* <t_e conj t_o> = tau_e tau_o sum_m q^m e^{i k (2m+1) delta} = tau_e tau_o e^{ik delta} / (1 - q e^{2ik delta}). */
         const double ph = 2.0 * M_PI * delta_nm / s->lambda_nm;
         const double complex z = cexp(I * ph);
-        const double complex cross = tt * z / (1.0 - q * z * z);
+        const double complex cross = width_nm > 0.0 ? mono_cross_box(tt, q, z, width_nm, s->lambda_nm)
+                                                    : tt * z / (1.0 - q * z * z);
         const double v = incoherent + 2.0 * creal(gamma * cross);
         xyz[0] = xyz[1] = xyz[2] = v;
         return;
@@ -147,13 +174,18 @@ void biref_pe_shade(const biref_pe_setup *s, const biref_spectral *sp, const bir
     double w = tt;
     for (int m = 0; m <= PE_MAX_ORDER; m++) {
         double c[3], si[3];
-        biref_spectral_phase_integrals(sp, (2.0 * m + 1.0) * delta_nm, c, si);
+        if (pf)
+            biref_phase_integrals_box(pf, (2.0 * m + 1.0) * delta_nm, (2.0 * m + 1.0) * width_nm, c, si);
+        else
+            biref_spectral_phase_integrals(sp, (2.0 * m + 1.0) * delta_nm, c, si);
         for (int j = 0; j < 3; j++) {
             cross_re[j] += w * c[j];
             cross_im[j] += w * si[j];
         }
         w *= q;
-        if (w < 1e-7 * tt) break;
+        /* Prefiltered, the third order (weight q^2 ~ 1e-5 in air) is left out: it costs two
+         * look-ups and changes the intensity by ~1e-5. */
+        if (w < (pf && width_nm > 0.0 ? 1e-4 : 1e-7) * tt) break;
     }
     for (int j = 0; j < 3; j++)
         xyz[j] = incoherent + 2.0 * (creal(gamma) * cross_re[j] - cimag(gamma) * cross_im[j]);
@@ -172,62 +204,25 @@ static double detect(const biref_pe_polariscope *pol, const biref_jones *J)
     return creal(sum);
 }
 
-biref_status biref_pe_shade_general(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p,
-                                    int jitter, double span_nm, double xyz[3])
-{
-    biref_slab slab = biref_pe_slab_at(&s->material, s->thickness, s->eta_i, p);
-    biref_slab_state st;
-    biref_status r;
-    if (s->light == BIREF_PE_WHITE) {
-        if (!sp) return BIREF_ERR_INVALID;
-        if ((r = biref_slab_prepare(&slab, 0.0, &st)) != BIREF_OK) return r;
-        biref_expansion_opts opts;
-        biref_expansion_opts_default(&opts);
-        return biref_spectrum_expansion_polarized(sp, &st, BIREF_TRANSMISSION, s->pol.C, s->pol.P, &opts, xyz, NULL);
-    }
-    if (jitter < 1) jitter = 1;
-    double sum = 0.0;
-    const double h0 = slab.thickness_nm;
-    for (int k = 0; k < jitter; k++) {
-        slab.thickness_nm = jitter == 1 ? h0 : h0 + span_nm * ((k + 0.5) / jitter - 0.5);
-        if ((r = biref_slab_prepare(&slab, 0.0, &st)) != BIREF_OK) return r;
-        biref_jones T;
-        biref_slab_jones_at(&st, s->lambda_nm, &T, NULL);
-        sum += detect(&s->pol, &T);
-    }
-    xyz[0] = xyz[1] = xyz[2] = sum / jitter;
-    return BIREF_OK;
-}
-
 /* Transmission paths to this order for the monochromatic oblique case: order n carries the
  * intensity factor (internal reflectance)^(2n) ~ 0.05^(2n) in air, so stopping after order 2
  * leaves ~1e-8 of the intensity. */
 #define PE_OBLIQUE_ORDER 2
 #define PE_OBLIQUE_PATHS 42 /* 2 + 8 + 32 */
 
-biref_status biref_pe_shade_oblique(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p,
-                                    double theta, double xyz[3])
+/* Monochromatic light on the prepared plate: the transmission paths to PE_OBLIQUE_ORDER, each
+ * order's paths summed coherently and the orders in intensity (docs, "Coherence"). */
+static biref_status mono_paths(const biref_pe_setup *s, const biref_slab_state *st, double xyz[3])
 {
-    biref_status r = biref_theta_check(theta, NULL, 0);
-    if (r != BIREF_OK) return r;
-    biref_slab slab = biref_pe_slab_best(&s->material, s->thickness, s->eta_i, p);
-    biref_slab_state st;
-    if ((r = biref_slab_prepare(&slab, theta, &st)) != BIREF_OK) return r;
-    if (s->light == BIREF_PE_WHITE) {
-        if (!sp) return BIREF_ERR_INVALID;
-        biref_expansion_opts opts;
-        biref_expansion_opts_default(&opts);
-        return biref_spectrum_expansion_polarized(sp, &st, BIREF_TRANSMISSION, s->pol.C, s->pol.P, &opts, xyz, NULL);
-    }
     biref_path paths[PE_OBLIQUE_PATHS];
-    size_t n = biref_slab_paths(&st, BIREF_TRANSMISSION, PE_OBLIQUE_ORDER, paths, PE_OBLIQUE_PATHS);
+    size_t n = biref_slab_paths(st, BIREF_TRANSMISSION, PE_OBLIQUE_ORDER, paths, PE_OBLIQUE_PATHS);
     if (n == 0) return BIREF_ERR_INVALID;
     const double k = 2.0 * M_PI / s->lambda_nm;
     /* A path's phase is the product of its legs' phases (its optical path is the sum of the
      * legs'), so powers of the four leg phases replace one complex exponential per path. */
     double complex pw[4][PE_OBLIQUE_ORDER + 2]; /* [o down, e down, o up, e up][power] */
-    const double complex leg[4] = {cexp(I * k * st.opl_down[0]), cexp(I * k * st.opl_down[1]),
-                                   cexp(I * k * st.opl_up[0]), cexp(I * k * st.opl_up[1])};
+    const double complex leg[4] = {cexp(I * k * st->opl_down[0]), cexp(I * k * st->opl_down[1]),
+                                   cexp(I * k * st->opl_up[0]), cexp(I * k * st->opl_up[1])};
     for (int l = 0; l < 4; l++) {
         pw[l][0] = 1.0;
         for (int e = 1; e < PE_OBLIQUE_ORDER + 2; e++) pw[l][e] = pw[l][e - 1] * leg[l];
@@ -250,14 +245,61 @@ biref_status biref_pe_shade_oblique(const biref_pe_setup *s, const biref_spectra
     return BIREF_OK;
 }
 
-biref_status biref_pe_shade_numeric(const biref_pe_setup *s, const biref_numeric_plan *plan,
-                                    const biref_pe_principal *p, double xyz[3])
+biref_status biref_pe_shade_state(const biref_pe_setup *s, const biref_integrator *it, const biref_slab_state *st,
+                                  double xyz[3])
 {
-    if (s->light != BIREF_PE_WHITE || !plan) return BIREF_ERR_INVALID;
+    if (s->light != BIREF_PE_WHITE) return mono_paths(s, st, xyz);
+    if (!it) return BIREF_ERR_INVALID;
+    biref_light light;
+    biref_pe_light(&s->pol, &light);
+    biref_integration res;
+    biref_status r = biref_integrate(it, st, BIREF_SIDE_TRANSMISSION, &light, &res);
+    if (r != BIREF_OK) return r;
+    for (int j = 0; j < 3; j++) xyz[j] = res.T[j];
+    return BIREF_OK;
+}
+
+biref_status biref_pe_shade_general(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p,
+                                    int jitter, double span_nm, double xyz[3])
+{
     biref_slab slab = biref_pe_slab_at(&s->material, s->thickness, s->eta_i, p);
     biref_slab_state st;
-    biref_status r = biref_slab_prepare(&slab, 0.0, &st);
-    if (r != BIREF_OK) return r;
-    biref_spectrum_numeric_polarized(plan, &st, BIREF_TRANSMISSION, s->pol.C, s->pol.P, xyz);
+    biref_status r;
+    if (s->light == BIREF_PE_WHITE) {
+        if (!sp) return BIREF_ERR_INVALID;
+        if ((r = biref_slab_prepare(&slab, 0.0, &st)) != BIREF_OK) return r;
+        biref_integrator *it = NULL;
+        if ((r = biref_pe_expansion_integrator(sp, &it)) != BIREF_OK) return r;
+        r = biref_pe_shade_state(s, it, &st, xyz);
+        biref_integrator_destroy(it);
+        return r;
+    }
+    if (jitter < 1) jitter = 1;
+    double sum = 0.0;
+    const double h0 = slab.thickness_nm;
+    for (int k = 0; k < jitter; k++) {
+        slab.thickness_nm = jitter == 1 ? h0 : h0 + span_nm * ((k + 0.5) / jitter - 0.5);
+        if ((r = biref_slab_prepare(&slab, 0.0, &st)) != BIREF_OK) return r;
+        biref_jones T;
+        biref_slab_jones_at(&st, s->lambda_nm, &T, NULL);
+        sum += detect(&s->pol, &T);
+    }
+    xyz[0] = xyz[1] = xyz[2] = sum / jitter;
     return BIREF_OK;
+}
+
+biref_status biref_pe_shade_oblique(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p,
+                                    double theta, double xyz[3])
+{
+    biref_status r = biref_theta_check(theta, NULL, 0);
+    if (r != BIREF_OK) return r;
+    biref_slab slab = biref_pe_slab_best(&s->material, s->thickness, s->eta_i, p);
+    biref_slab_state st;
+    if ((r = biref_slab_prepare(&slab, theta, &st)) != BIREF_OK) return r;
+    if (s->light != BIREF_PE_WHITE) return biref_pe_shade_state(s, NULL, &st, xyz);
+    biref_integrator *it = NULL;
+    if (!sp || (r = biref_pe_expansion_integrator(sp, &it)) != BIREF_OK) return sp ? r : BIREF_ERR_INVALID;
+    r = biref_pe_shade_state(s, it, &st, xyz);
+    biref_integrator_destroy(it);
+    return r;
 }

@@ -101,22 +101,22 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
 
     biref_spectral_config cfg;
     biref_spectral_config_default(&cfg);
+    char why[BIREF_MSG_SIZE] = "";
     s = biref_light_sp(r->w_in, r->mask, &r->light);
-    if (!s) s = biref_spectral_create(&cfg, &r->sp);
+    if (!s) s = biref_spectral_create(&cfg, &r->sp, why, sizeof why);
     if (!s) {
         biref_integrator_options io;
         biref_integrator_options_default(&io);
         io.method = opt->method;
         io.samples = opt->samples;
         io.expansion = opt->expansion;
-        s = biref_integrator_create(r->sp, &io, &r->integrator);
+        s = biref_integrator_create(r->sp, &io, &r->integrator, why, sizeof why);
     }
     if (!s && opt->antialias == BIREF_ANTIALIAS_PREFILTER) s = biref_phase_prefilter_create(r->sp, &r->prefilter);
     if (s) {
-        char text[120];
-        snprintf(text, sizeof text, "cannot set up the spectral integration: %s", biref_status_string(s));
         biref_renderer_destroy(r);
-        return biref_fail_status(s, msg, msg_len, "%s", text);
+        return biref_fail_status(s, msg, msg_len, "cannot set up the spectral integration: %s",
+                                 why[0] ? why : biref_status_string(s));
     }
     *out = r;
     return BIREF_OK;

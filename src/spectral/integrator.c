@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "biref/integrator.h"
+#include "error.h"
 #include "optics/slab_internal.h"
 #include "spectral/integrator_internal.h"
 #include "spectral/phase_prefilter.h"
@@ -86,33 +87,38 @@ static biref_status packet_batch(const biref_integrator *it, const biref_slab_st
                                  biref_sides sides, const biref_light *lights, size_t light_stride,
                                  biref_integration *out, biref_status *status);
 
-static biref_status check_options(const biref_integrator_options *o)
+static biref_status check_options(const biref_integrator_options *o, char *msg, size_t msg_len)
 {
     switch (o->method) {
     case BIREF_METHOD_ANALYTIC:
     case BIREF_METHOD_GROUND_TRUTH: return BIREF_OK;
     case BIREF_METHOD_NUMERIC:
-        return o->samples >= 1 && o->samples <= BIREF_NUMERIC_MAX_SAMPLES ? BIREF_OK : BIREF_ERR_INVALID;
+        if (o->samples >= 1 && o->samples <= BIREF_NUMERIC_MAX_SAMPLES) return BIREF_OK;
+        return biref_fail(msg, msg_len, "%d samples: the numeric method needs 1 to %d", o->samples,
+                          BIREF_NUMERIC_MAX_SAMPLES);
     case BIREF_METHOD_EXPANSION: {
         const biref_expansion_opts *x = &o->expansion;
-        if (x->order > BIREF_EXPANSION_MAX_ORDER || x->order < -1) return BIREF_ERR_INVALID;
-        if (x->order < 0 && !(x->tolerance > 0.0 && x->tolerance < 1.0)) return BIREF_ERR_INVALID;
+        if (x->order > BIREF_EXPANSION_MAX_ORDER || x->order < -1)
+            return biref_fail(msg, msg_len, "expansion order %d: expected 0 to %d, or -1 for adaptive", x->order,
+                              BIREF_EXPANSION_MAX_ORDER);
+        if (x->order < 0 && !(x->tolerance > 0.0 && x->tolerance < 1.0))
+            return biref_fail(msg, msg_len, "expansion tolerance %g: expected a number in (0, 1)", x->tolerance);
         return BIREF_OK;
     }
     }
-    return BIREF_ERR_INVALID;
+    return biref_fail(msg, msg_len, "unknown integration method (%d)", (int)o->method);
 }
 
 biref_status biref_integrator_create(const biref_spectral *sp, const biref_integrator_options *o,
-                                     biref_integrator **out)
+                                     biref_integrator **out, char *msg, size_t msg_len)
 {
-    if (!out) return BIREF_ERR_INVALID;
+    if (!out) return biref_fail(msg, msg_len, "no output");
     *out = NULL;
-    if (!sp || !o) return BIREF_ERR_INVALID;
-    biref_status s = check_options(o);
+    if (!sp || !o) return biref_fail(msg, msg_len, "no spectral context or options");
+    biref_status s = check_options(o, msg, msg_len);
     if (s != BIREF_OK) return s;
     biref_integrator *it = calloc(1, sizeof *it);
-    if (!it) return BIREF_ERR_NOMEM;
+    if (!it) return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
     it->sp = sp;
     it->method = o->method;
     it->xopts = o->expansion;
@@ -129,7 +135,7 @@ biref_status biref_integrator_create(const biref_spectral *sp, const biref_integ
     default:
         it->side = side_numeric;
         s = biref_numeric_plan_create(
-            sp, o->method == BIREF_METHOD_GROUND_TRUTH ? BIREF_GROUND_TRUTH_SAMPLES : o->samples, &it->plan);
+            sp, o->method == BIREF_METHOD_GROUND_TRUTH ? BIREF_GROUND_TRUTH_SAMPLES : o->samples, &it->plan, msg, msg_len);
         if (s != BIREF_OK) {
             free(it);
             return s;
@@ -315,9 +321,8 @@ void biref_integrate_hits(const biref_integrator *it, const biref_slab_hit *hits
         if (packets) {
             for (size_t k = 0; k < m; k++) {
                 const biref_slab *s = &hits[k0 + k].slab;
-                ph[k] = (biref_packet_hit){s->eta_o, s->eta_e, {0, 0, 0}, s->thickness_nm, s->eta_i,
-                                           s->eta_i * sin(hits[k0 + k].theta)}; /* eq. 1, as slab.c */
-                biref_axis_unit_unchecked(s->axis, ph[k].axis);
+                ph[k] = (biref_packet_hit){s->eta_o, s->eta_e, {s->axis[0], s->axis[1], s->axis[2]}, s->thickness_nm,
+                                           s->eta_i, s->eta_i * sin(hits[k0 + k].theta)}; /* eq. 1, as slab.c */
             }
             it->hits(it->sp, light->w_in, light->mask, ph, m, T + k0, R + k0, scalar);
         }

@@ -5,21 +5,25 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "error.h"
 #include "spectral/spectral_internal.h"
 
-biref_status biref_numeric_plan_create(const biref_spectral *sp, int samples, biref_numeric_plan **out)
+biref_status biref_numeric_plan_create(const biref_spectral *sp, int samples, biref_numeric_plan **out, char *msg,
+                                       size_t msg_len)
 {
-    if (!out) return BIREF_ERR_INVALID;
+    if (!out) return biref_fail(msg, msg_len, "no output");
     *out = NULL;
-    if (!sp || samples <= 0 || samples > (1 << 24)) return BIREF_ERR_INVALID;
+    if (!sp) return biref_fail(msg, msg_len, "no spectral context");
+    if (samples <= 0 || samples > (1 << 24))
+        return biref_fail(msg, msg_len, "%d samples: the numeric method needs 1 to %d", samples, 1 << 24);
     biref_numeric_plan *p = calloc(1, sizeof *p);
-    if (!p) return BIREF_ERR_NOMEM;
+    if (!p) return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
     p->samples = samples;
     p->lambda = malloc((size_t)samples * sizeof *p->lambda);
     p->weight = malloc((size_t)samples * sizeof *p->weight);
     if (!p->lambda || !p->weight) {
         biref_numeric_plan_destroy(p);
-        return BIREF_ERR_NOMEM;
+        return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
     }
     const double lmin = sp->cfg.lambda_min_nm, lmax = sp->cfg.lambda_max_nm, dl = (lmax - lmin) / samples;
     double sum[3] = {0, 0, 0};

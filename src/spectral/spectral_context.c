@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "error.h"
 #include "spectral/spectral_internal.h"
 
 /* Table resolution. Hermite interpolation of the demodulated F has error ~ (2 pi B h)^4 / 384
@@ -97,9 +98,9 @@ static biref_status build_table(biref_spectral *sp)
     return BIREF_OK;
 }
 
-biref_status biref_spectral_create(const biref_spectral_config *cfg_in, biref_spectral **out)
+biref_status biref_spectral_create(const biref_spectral_config *cfg_in, biref_spectral **out, char *msg, size_t msg_len)
 {
-    if (!out) return BIREF_ERR_INVALID;
+    if (!out) return biref_fail(msg, msg_len, "no output");
     *out = NULL;
     biref_spectral_config cfg;
     if (cfg_in)
@@ -108,18 +109,21 @@ biref_status biref_spectral_create(const biref_spectral_config *cfg_in, biref_sp
         biref_spectral_config_default(&cfg);
     if (!isfinite(cfg.lambda_min_nm) || !isfinite(cfg.lambda_max_nm) || cfg.lambda_min_nm <= 0.0 ||
         cfg.lambda_max_nm <= cfg.lambda_min_nm)
-        return BIREF_ERR_INVALID;
+        return biref_fail(msg, msg_len, "%g-%g nm is not a band (expected 0 < min < max, both finite)", cfg.lambda_min_nm,
+                          cfg.lambda_max_nm);
     /* Only where the colour-matching data is defined: the table resolution and the far limit
      * below assume a visible band (half-width in 1/lambda <= 8e-4 / nm), and every sample count
      * below is then small (<= 9400 build samples). */
     double dom_lo, dom_hi;
-    if (biref_cmf_domain(cfg.cmf, &dom_lo, &dom_hi) != BIREF_OK || cfg.lambda_min_nm < dom_lo ||
-        cfg.lambda_max_nm > dom_hi)
-        return BIREF_ERR_INVALID;
+    if (biref_cmf_domain(cfg.cmf, &dom_lo, &dom_hi) != BIREF_OK)
+        return biref_fail(msg, msg_len, "unknown colour-matching functions (%d)", (int)cfg.cmf);
+    if (cfg.lambda_min_nm < dom_lo || cfg.lambda_max_nm > dom_hi)
+        return biref_fail(msg, msg_len, "%g-%g nm is not covered by the %s colour-matching functions (%g-%g nm)",
+                          cfg.lambda_min_nm, cfg.lambda_max_nm, biref_cmf_kind_name(cfg.cmf), dom_lo, dom_hi);
     biref_spectral *sp = calloc(1, sizeof *sp);
-    if (!sp) return BIREF_ERR_NOMEM;
+    if (!sp) return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
     sp->cfg = cfg;
-    biref_status s = biref_cmf_band_init(&sp->band, cfg.cmf, cfg.lambda_min_nm, cfg.lambda_max_nm);
+    biref_status s = biref_cmf_band_init(&sp->band, cfg.cmf, cfg.lambda_min_nm, cfg.lambda_max_nm, msg, msg_len);
     if (s != BIREF_OK) {
         free(sp);
         return s;
@@ -131,16 +135,16 @@ biref_status biref_spectral_create(const biref_spectral_config *cfg_in, biref_sp
     sp->table = calloc((size_t)sp->nodes * 12, sizeof *sp->table);
     if (!sp->table) {
         free(sp);
-        return BIREF_ERR_NOMEM;
+        return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
     }
     if (build_table(sp) != BIREF_OK) {
         biref_spectral_destroy(sp);
-        return BIREF_ERR_NOMEM;
+        return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
     }
     sp->carrier = malloc((size_t)sp->nodes * 2 * sizeof *sp->carrier);
     if (!sp->carrier) {
         biref_spectral_destroy(sp);
-        return BIREF_ERR_NOMEM;
+        return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
     }
     for (int m = 0; m < sp->nodes; m++) {
         double complex z = cexp(2.0 * M_PI * I * sp->nu_c * m * sp->step);
@@ -166,7 +170,7 @@ biref_status biref_spectral_create(const biref_spectral_config *cfg_in, biref_sp
         for (int j = 0; j < 3; j++) sp->k_centroid[j] += lam[j] * dl * 2.0 * M_PI / lambda;
     }
     for (int i = 0; i < BIREF_COHERENT_PLANS; i++) {
-        s = biref_numeric_plan_create(sp, 48 << i, &sp->coherent[i]);
+        s = biref_numeric_plan_create(sp, 48 << i, &sp->coherent[i], msg, msg_len);
         if (s != BIREF_OK) {
             biref_spectral_destroy(sp);
             return s;

@@ -60,6 +60,8 @@ check_stderr "accuracy --progress --quiet" empty "${acc[@]}" --progress --quiet
 bench=(bench --scene "$scene" --width 16 --height 16 --methods analytic,numeric-8 --max-seconds 0.05 --json)
 check_stderr "bench --progress" lines "${bench[@]}" --progress
 
+expect_ok "biref --help" --help
+expect_grep "biref --help names --progress and --quiet" '--progress.*-q, --quiet'
 for cmd in slab spectrum accuracy render diff bench figure gl-data photoelastic; do
   expect_ok "$cmd takes --quiet and --progress" "$cmd" --quiet --progress --help
 done

@@ -111,15 +111,10 @@ enum { NINTEGRATORS = NCMP + 2 }; /* the compared methods, the reference, the ch
 static int make_plans(const acc_run *run, const acc_options *o, biref_spectral **sp,
                       biref_integrator *its[NINTEGRATORS], acc_plans *pl)
 {
-    biref_status s = biref_spectral_create(&run->scfg, sp);
-    if (s == BIREF_ERR_INVALID) {
-        double lo = 0, hi = 0;
-        (void)biref_cmf_domain(run->scfg.cmf, &lo, &hi);
-        return cli_error(ACC_CMD, "--range-nm: %g-%g nm is not covered by the %s colour-matching functions (%g-%g nm)",
-                         run->scfg.lambda_min_nm, run->scfg.lambda_max_nm, biref_cmf_kind_name(run->scfg.cmf), lo, hi),
-               CLI_EXIT_USAGE;
-    }
-    if (s != BIREF_OK) return cli_error(ACC_CMD, "spectral context: %s", biref_status_string(s)), CLI_EXIT_FAIL;
+    char why[BIREF_MSG_SIZE];
+    biref_status s = biref_spectral_create(&run->scfg, sp, why, sizeof why);
+    if (s == BIREF_ERR_INVALID) return cli_error(ACC_CMD, "--range-nm: %s", why), CLI_EXIT_USAGE;
+    if (s != BIREF_OK) return cli_error(ACC_CMD, "spectral context: %s", why), CLI_EXIT_FAIL;
     biref_integrator_options io[NINTEGRATORS];
     for (int k = 0; k < NINTEGRATORS; k++) {
         biref_integrator_options_default(&io[k]);
@@ -134,12 +129,8 @@ static int make_plans(const acc_run *run, const acc_options *o, biref_spectral *
     io[NCMP + 1].samples = o->cost_only ? 0 : run->samples_check;
     for (int k = 0; k < NINTEGRATORS; k++) {
         if (io[k].method == BIREF_METHOD_NUMERIC && io[k].samples <= 0) continue;
-        s = biref_integrator_create(*sp, &io[k], &its[k]);
-        if (s != BIREF_OK)
-            return cli_error(ACC_CMD, "numeric plan (%d samples): %s",
-                             io[k].method == BIREF_METHOD_GROUND_TRUTH ? BIREF_GROUND_TRUTH_SAMPLES : io[k].samples,
-                             biref_status_string(s)),
-                   CLI_EXIT_FAIL;
+        s = biref_integrator_create(*sp, &io[k], &its[k], why, sizeof why);
+        if (s != BIREF_OK) return cli_error(ACC_CMD, "%s integrator: %s", biref_method_name(io[k].method), why), CLI_EXIT_FAIL;
     }
     memset(pl, 0, sizeof *pl);
     pl->sp = *sp;

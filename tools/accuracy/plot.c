@@ -17,6 +17,7 @@
 /* Character scales: axis text, and the smaller labels, notes and legends. */
 #define TEXT_SCALE 0.62
 #define SMALL_SCALE 0.52
+#define LEGEND_SCALE 0.47 /* a legend row holds up to nine entries */
 
 static const char *const WHICH_TITLE[2] = {"transmission", "reflection"};
 
@@ -64,23 +65,27 @@ static void panel(double vx0, double vx1, double vy0, double vy1, double xmin, d
     }
 }
 
-/* A horizontal guide at ΔE00 = 1, with its label (label_left < 0: none; the legend names it). */
-static void jnd_line(double x0, double x1, int label_left)
+/* A horizontal guide at ΔE00 = 1; the legend names it (a label on the line collided with the ticks
+ * and the data). */
+static void jnd_line(double x0, double x1)
 {
     double x[2] = {x0, x1}, y[2] = {0.0, 0.0};
     plcol0(FIG_GREY);
     pllsty(3);
     plline(2, x, y);
     pllsty(1);
-    if (label_left < 0) {
-        plcol0(FIG_BLACK);
-        return;
-    }
-    plschr(0.0, SMALL_SCALE);
-    plptex(label_left ? x0 + 0.03 * (x1 - x0) : x1 - 0.03 * (x1 - x0), 0.05, 1.0, 0.0, label_left ? 0.0 : 1.0,
-           "ΔE00 = 1");
-    plschr(0.0, TEXT_SCALE);
     plcol0(FIG_BLACK);
+}
+
+/* Says what the log axis cannot show, in a line above the panel titles. */
+static void floor_note(void)
+{
+    plvpor(0.03, 0.97, 0.965, 0.995);
+    plwind(0.0, 1.0, 0.0, 1.0);
+    plschr(0.0, SMALL_SCALE);
+    plcol0(FIG_BLACK);
+    plptex(0.0, 0.5, 1.0, 0.0, 0.0, "ΔE00 below 10#u-3#d is drawn at 10#u-3#d (the bottom axis): a log axis cannot show 0.");
+    plschr(0.0, TEXT_SCALE);
 }
 
 static int style_color(acc_plot_style s)
@@ -113,15 +118,18 @@ static void bottom_legend(int n, const legend_entry *e)
     plcol0(FIG_BLACK);
     plwidth(1.0);
     plbox("bc", 0.0, 0, "bc", 0.0, 0);
-    /* Column widths in proportion to the text length (plus the sample), so long labels fit. */
+    /* Each column: the sample, a gap, its text and a gap before the next sample; what the samples
+     * and gaps leave is shared in proportion to the text lengths, so no text runs into the next
+     * entry's sample. */
     double len[16], total = 0.0;
     if (n > 16) n = 16;
-    for (int i = 0; i < n; i++) total += len[i] = (double)strlen(e[i].text) + 12.0;
-    const double sample = 0.03;
-    plschr(0.0, SMALL_SCALE);
+    for (int i = 0; i < n; i++) total += len[i] = (double)strlen(e[i].text);
+    const double sample = 0.03, gap = 0.008, pad = 0.014, fixed = sample + gap + pad;
+    const double spare = 0.98 - n * fixed;
+    plschr(0.0, LEGEND_SCALE);
     double x0 = 0.01;
     for (int i = 0; i < n; i++) {
-        if (i) x0 += 0.98 * len[i - 1] / total;
+        if (i) x0 += fixed + spare * len[i - 1] / total;
         double lx[2] = {x0, x0 + sample}, ly[2] = {0.5, 0.5};
         plcol0(e[i].color);
         if (e[i].lsty > 0) {
@@ -137,7 +145,7 @@ static void bottom_legend(int n, const legend_entry *e)
             plstring(1, &sx, &sy, e[i].sym);
         }
         plcol0(FIG_BLACK);
-        plptex(x0 + sample + 0.008, 0.5, 1.0, 0.0, 0.0, e[i].text);
+        plptex(x0 + sample + gap, 0.5, 1.0, 0.0, 0.0, e[i].text);
     }
     plschr(0.0, TEXT_SCALE);
 }
@@ -162,7 +170,7 @@ int acc_plot_vs_cost(const char *path, const acc_plot_cost_point *p, int n, cons
         const double vx0 = w ? 0.555 : 0.06;
         panel(vx0, vx0 + 0.425, 0.2, 0.86, xmin, xmax, DE_FLOOR, ymax, 1,
               "ns per shading sample (one core, biref_slab_prepare included)", "ΔE00 against the reference", title, note);
-        jnd_line(log10(xmin), log10(xmax), 1);
+        jnd_line(log10(xmin), log10(xmax));
         /* The numeric family as a curve through its max (solid) and mean (dashed) markers. */
         double lx[32], lmean[32], lmax[32];
         int nl = 0;
@@ -201,8 +209,10 @@ int acc_plot_vs_cost(const char *path, const acc_plot_cost_point *p, int n, cons
                                 {"mean over the samples", FIG_BLACK, 0, 0.0, MARK_MEAN},
                                 {"analytic (paper, eq. 26)", FIG_RED, 0, 0.0, MARK_MEAN},
                                 {"path-group expansion", FIG_BLUE, 0, 0.0, MARK_MEAN},
-                                {"numeric, N samples (label: N)", FIG_GREY, 1, 1.0, MARK_MEAN}};
+                                {"numeric, N samples (label: N)", FIG_GREY, 1, 1.0, MARK_MEAN},
+                                {"ΔE00 = 1", FIG_GREY, 3, 1.0, NULL}};
     bottom_legend(sizeof leg / sizeof leg[0], leg);
+    floor_note();
     if (fig_plot_end()) return cli_error("accuracy", "--plot-dir: %s", fig_plot_message()), -1;
     return 0;
 }
@@ -229,7 +239,7 @@ int acc_plot_vs_theta(const char *path, const acc_plot_theta_data *d)
             panel(vx0, vx0 + pw, vy0, vy0 + 0.33, th0, th1, DE_FLOOR, ymax, 0, "θ (degrees)",
                   m == 0 ? "ΔE00 against the reference" : "", title, NULL);
             /* Named in the legend: a label inside the panel sat on the axis ticks and the data. */
-            jnd_line(th0, th1, -1);
+            jnd_line(th0, th1);
             if (d->mark_deg > 0.0 && d->mark_deg < th1) {
                 double gx[2] = {d->mark_deg, d->mark_deg}, gy[2] = {log10(DE_FLOOR), log10(ymax)};
                 plcol0(FIG_GREY);
@@ -270,13 +280,7 @@ int acc_plot_vs_theta(const char *path, const acc_plot_theta_data *d)
     if (d->mark_deg > 0.0 && d->mark_deg < th1) leg[nl++] = (legend_entry){guide, FIG_GREY, 3, 1.0, NULL};
     leg[nl++] = (legend_entry){"ΔE00 = 1", FIG_GREY, 3, 1.0, NULL};
     bottom_legend(nl, leg);
-    /* Say what the log axis cannot show. */
-    plvpor(0.03, 0.97, 0.965, 0.995); /* above the panel titles */
-    plwind(0.0, 1.0, 0.0, 1.0);
-    plschr(0.0, SMALL_SCALE);
-    plcol0(FIG_BLACK);
-    plptex(0.0, 0.5, 1.0, 0.0, 0.0, "ΔE00 below 10#u-3#d is drawn at 10#u-3#d (the bottom axis): a log axis cannot show 0.");
-    plschr(0.0, TEXT_SCALE);
+    floor_note();
     if (fig_plot_end()) return cli_error("accuracy", "--plot-dir: %s", fig_plot_message()), -1;
     return 0;
 }

@@ -1,0 +1,19 @@
+/* The general-path shading of one prepared point of a plate, shared by the public photoelastic
+ * entry points and the pictures: white light through a spectral integrator, monochromatic light
+ * by the path expansion. */
+#ifndef BIREF_PHOTOELASTIC_SHADE_INTERNAL_H
+#define BIREF_PHOTOELASTIC_SHADE_INTERNAL_H
+
+#include "biref/integrator.h"
+#include "biref/photoelastic.h"
+
+/* Detected XYZ of the prepared plate st seen through s: white light by biref_integrate (it is
+ * required), monochromatic light at s->lambda_nm by the transmission paths to order 2, coherent
+ * within an order and orders added in intensity (it unused). */
+biref_status biref_pe_shade_state(const biref_pe_setup *s, const biref_integrator *it, const biref_slab_state *st,
+                                  double xyz[3]);
+
+/* The expansion integrator the general path uses for white light (default options). */
+biref_status biref_pe_expansion_integrator(const biref_spectral *sp, biref_integrator **out);
+
+#endif

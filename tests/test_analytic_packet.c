@@ -190,27 +190,30 @@ static float *render_with(const char *path, const char *isa, int threads, int w,
     return xyz;
 }
 
-/* Small renders of every example on every path against the scalar double path. */
+/* Small renders of the examples on every path against the scalar double path (each renderer
+ * builds its own look-up table: few renderers, so that the sanitizer build stays quick). */
 static void test_renders_per_isa(void)
 {
-    const char *scenes[] = {"examples/fig9a.json", "examples/fig9b.json", "examples/fig9c.json",
-                            "examples/fig9c_analyzer45.json", "examples/default.json"};
+    const char *scenes[] = {"examples/fig9a.json", "examples/default.json", "examples/fig9b.json",
+                            "examples/fig9c.json"};
+    const size_t n_scenes = quick ? 2 : sizeof scenes / sizeof scenes[0];
     const int W = quick ? 32 : 64, H = quick ? 18 : 36;
     const size_t n = (size_t)W * H;
-    for (size_t i = 0; i < sizeof scenes / sizeof scenes[0]; i++) {
+    for (size_t i = 0; i < n_scenes; i++) {
         float *ref = render_with(scenes[i], "scalar", 2, W, H);
-        if (!ref) {
-            /* A scene the analytic method refuses (world-fixed polarizers) is not this test's. */
-            printf("%s: not rendered by the analytic method\n", scenes[i]);
-            continue;
-        }
-        for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
+        CHECK(ref != NULL);
+        for (int isa = BIREF_SIMD_BASELINE; ref && isa < BIREF_SIMD_COUNT; isa++) {
             if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
             const char *name = biref_simd_isa_name((biref_simd_isa)isa);
-            float *a = render_with(scenes[i], name, 1, W, H), *b = render_with(scenes[i], name, 2, W, H);
-            CHECK(a && b);
-            if (a && b) {
-                CHECK(memcmp(a, b, n * 3 * sizeof *a) == 0);
+            float *a = render_with(scenes[i], name, 2, W, H);
+            CHECK(a != NULL);
+            if (a && i == 0) {
+                /* The same image on one thread (other packets: hits are grouped per row). */
+                float *b = render_with(scenes[i], name, 1, W, H);
+                CHECK(b && memcmp(a, b, n * 3 * sizeof *a) == 0);
+                free(b);
+            }
+            if (a) {
                 double sum = 0.0, worst = 0.0;
                 for (size_t k = 0; k < n; k++) {
                     double x[3] = {ref[3 * k], ref[3 * k + 1], ref[3 * k + 2]};
@@ -224,7 +227,6 @@ static void test_renders_per_isa(void)
                 CHECK(sum / (double)n <= 0.02 && worst <= 0.5);
             }
             free(a);
-            free(b);
         }
         free(ref);
     }

@@ -33,7 +33,8 @@ typedef struct {
 typedef void (*biref_packet_kernel)(const biref_spectral *sp, const double w_in[2], const double mask[2],
                                     const biref_packet_job *jobs, size_t n, double (*xyz)[3]);
 
-/* One renderer hit: a checked slab (unit axis) seen at incidence parameter K = eta_i sin theta.
+/* One renderer hit: a checked slab (its axis normalised in the kernel; one far from length 1 is
+ * left to the scalar path) seen at incidence parameter K = eta_i sin theta.
  * The kernel prepares it (modes, both interface solves, paths) in lanes as well. */
 typedef struct {
     double eta_o, eta_e, axis[3], thickness_nm, eta_i, K;

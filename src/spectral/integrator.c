@@ -321,9 +321,8 @@ void biref_integrate_hits(const biref_integrator *it, const biref_slab_hit *hits
         if (packets) {
             for (size_t k = 0; k < m; k++) {
                 const biref_slab *s = &hits[k0 + k].slab;
-                ph[k] = (biref_packet_hit){s->eta_o, s->eta_e, {0, 0, 0}, s->thickness_nm, s->eta_i,
-                                           s->eta_i * sin(hits[k0 + k].theta)}; /* eq. 1, as slab.c */
-                biref_axis_unit_unchecked(s->axis, ph[k].axis);
+                ph[k] = (biref_packet_hit){s->eta_o, s->eta_e, {s->axis[0], s->axis[1], s->axis[2]}, s->thickness_nm,
+                                           s->eta_i, s->eta_i * sin(hits[k0 + k].theta)}; /* eq. 1, as slab.c */
             }
             it->hits(it->sp, light->w_in, light->mask, ph, m, T + k0, R + k0, scalar);
         }

@@ -6,6 +6,7 @@
 #include <stdio.h>
 
 #include "biref/biref.h"
+#include "cli_opts.h"
 #include "cli_progress.h"
 
 /* Exit codes: 0 success, 1 runtime failure (I/O, numerics), 2 bad usage or bad input. */
@@ -39,22 +40,19 @@ enum {
     OPT_SLAB_LAST
 };
 
-#define CLI_SLAB_LONG_OPTIONS                                                               \
-    {"eta-o", required_argument, 0, OPT_ETA_O}, {"eta-e", required_argument, 0, OPT_ETA_E}, \
-        {"axis", required_argument, 0, OPT_AXIS},                                           \
-        {"thickness-um", required_argument, 0, OPT_THICKNESS_UM},                           \
-        {"thickness-mm", required_argument, 0, OPT_THICKNESS_MM},                           \
-        {"thickness-nm", required_argument, 0, OPT_THICKNESS_NM},                           \
-        {"theta-deg", required_argument, 0, OPT_THETA_DEG}, {"eta-i", required_argument, 0, OPT_ETA_I}
-
-#define CLI_SLAB_HELP                                                                        \
-    "  --eta-o N            ordinary refractive index (required)\n"                          \
-    "  --eta-e N            extraordinary refractive index (required)\n"                     \
-    "  --axis a,b,c         optic axis in the slab frame, normalised by biref (required)\n"  \
-    "                       frame: surface y = 0, slab below, light in the YZ plane\n"       \
-    "  --thickness-um D     slab thickness in micrometres (or --thickness-mm, --thickness-nm)\n" \
-    "  --theta-deg A        angle of incidence in degrees, 0 <= A < 90 (default 0)\n"       \
-    "  --eta-i N            index of the surrounding medium, both sides (default 1)\n"
+/* The slab options as entries of an option table (cli_opts.h); the command's handler passes
+ * their codes to cli_slab_opts_handle. */
+#define CLI_SLAB_OPTIONS                                                                                      \
+    CLI_CUSTOM("eta-o", "N", OPT_ETA_O, "ordinary refractive index (required)"),                             \
+        CLI_CUSTOM("eta-e", "N", OPT_ETA_E, "extraordinary refractive index (required)"),                    \
+        CLI_CUSTOM("axis", "a,b,c", OPT_AXIS,                                                                \
+                   "optic axis in the slab frame, normalised by biref (required);\n"                         \
+                   "frame: surface y = 0, slab below, light in the YZ plane"),                               \
+        CLI_CUSTOM("thickness-um", "D", OPT_THICKNESS_UM, "slab thickness in micrometres (required, or one of:)"), \
+        CLI_CUSTOM("thickness-mm", "D", OPT_THICKNESS_MM, "slab thickness in millimetres"),                 \
+        CLI_CUSTOM("thickness-nm", "D", OPT_THICKNESS_NM, "slab thickness in nanometres"),                  \
+        CLI_CUSTOM("theta-deg", "A", OPT_THETA_DEG, "angle of incidence in degrees, 0 <= A < 90 (default 0)"), \
+        CLI_CUSTOM("eta-i", "N", OPT_ETA_I, "index of the surrounding medium, both sides (default 1)")
 
 void cli_slab_opts_init(cli_slab_opts *o);
 /* Handles one slab option; returns 1 if handled, 0 if the code is not a slab option, -1 on error. */

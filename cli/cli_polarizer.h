@@ -7,6 +7,7 @@
 #include <complex.h>
 
 #include "biref/biref.h"
+#include "cli_opts.h"
 
 /* "linear:DEG", "circular:+1" / "circular:-1" (or "circular:left"/"circular:right" are not
  * accepted: handedness is the sign of S3, see docs/PHYSICS.md §5) -> Stokes vector. */
@@ -21,5 +22,13 @@ int cli_parse_general_analyzer(const char *cmd, const char *opt, const char *tex
  * expansion, shared by biref spectrum and biref render. Return 0 or print one error. */
 int cli_parse_expansion_order(const char *cmd, const char *text, biref_expansion_opts *o);
 int cli_parse_expansion_tolerance(const char *cmd, const char *text, biref_expansion_opts *o);
+/* The two as entries of an option table (cli_opts.h), handled by the command with these codes. */
+#define CLI_EXPANSION_OPTIONS(ORDER_CODE, TOLERANCE_CODE)                                     \
+    CLI_CUSTOM("order", "N", ORDER_CODE,                                                      \
+               "expansion: every pair of path groups up to order N interferes,\n"             \
+               "the rest adds incoherently, 0-8 (default adaptive)"),                         \
+        CLI_CUSTOM("tolerance", "E", TOLERANCE_CODE,                                          \
+                   "expansion: adaptive orders' target relative error (default 1e-3;\n"       \
+                   "docs/PHYSICS.md section 5)")
 
 #endif

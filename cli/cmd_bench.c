@@ -1,5 +1,6 @@
 /* biref bench: frame time of each spectral integration method on a scene (the paper's table 1). */
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,6 +11,7 @@
 
 #include "cli_data.h"
 #include "cli_gl.h"
+#include "cli_opts.h"
 #include "cli_render.h"
 #include "commands.h"
 #include "json_out.h"
@@ -18,33 +20,6 @@ static const char *const CMD = "bench";
 
 #define DEFAULT_METHODS "analytic,numeric-8,numeric-32,numeric-128,numeric-512,numeric-2048,ground-truth"
 #define MAX_METHODS 32
-
-static void help(void)
-{
-    printf("usage: biref bench [OPTIONS]\n\n"
-           "Times rendering one frame of a scene with each spectral integration method, like the\n"
-           "paper's table 1. Set-up (look-up tables, sample plans) is not timed. A method whose\n"
-           "frame would take longer than --max-seconds is timed on evenly spaced rows and scaled\n"
-           "to the full frame (reported as extrapolated; its frame time is then the sampled CPU\n"
-           "time scaled to the frame and divided by the threads, as rows parallelise perfectly).\n\n"
-           "Options:\n"
-           "  --scene FILE         scene (default examples/fig9a.json; $BIREF_DATA_DIR or the installed copy\n"
-           "                       when not in the current directory)\n"
-           "  --width W            frame width (default 1920)\n"
-           "  --height H           frame height (default 1080)\n"
-           "  --methods LIST       comma-separated: analytic, expansion, ground-truth, numeric-N\n"
-           "                       (default " DEFAULT_METHODS ")\n"
-           "  --max-seconds S      time budget per method before extrapolating (default 10)\n"
-           "  --threads T          OpenMP threads (default: all cores)\n"
-           "  --backend B          cpu (default) or gl: also time the analytic method as a GLSL shader\n"
-           "                       (GPU time from timer queries, median of --frames frames; docs/GPU.md)\n"
-           "  --frames N           gl: frames timed after one warm-up (default 5)\n"
-           "  --json               {width, height, threads, methods: [{method, ms_per_frame,\n"
-           "                       ns_per_pixel, extrapolated, rows_timed, cpu_ms_per_frame}]}\n"
-           "  -h, --help           this help\n\n"
-           "Frame time is wall-clock time; CPU time (all threads) is also shown because it hardly\n"
-           "changes when other jobs share the cores.\n");
-}
 
 typedef struct {
     char name[32];
@@ -121,78 +96,79 @@ static void format_time(double ms, char *buf, size_t n)
         snprintf(buf, n, "%.2f s", ms / 1000.0);
 }
 
-int cmd_bench(int argc, char **argv)
-{
-    enum { OPT_SCENE = 3000, OPT_WIDTH, OPT_HEIGHT, OPT_METHODS, OPT_MAX_SECONDS, OPT_THREADS, OPT_JSON, OPT_BACKEND, OPT_FRAMES };
-    static const struct option longopts[] = {{"scene", required_argument, 0, OPT_SCENE},
-                                             {"width", required_argument, 0, OPT_WIDTH},
-                                             {"height", required_argument, 0, OPT_HEIGHT},
-                                             {"methods", required_argument, 0, OPT_METHODS},
-                                             {"max-seconds", required_argument, 0, OPT_MAX_SECONDS},
-                                             {"threads", required_argument, 0, OPT_THREADS},
-                                             {"json", no_argument, 0, OPT_JSON},
-                                             {"backend", required_argument, 0, OPT_BACKEND},
-                                             {"frames", required_argument, 0, OPT_FRAMES},
-                                             {"help", no_argument, 0, 'h'},
-                                             {0, 0, 0, 0}};
-    const char *scene_path = NULL, *methods = DEFAULT_METHODS;
-    long width = 1920, height = 1080, threads = 0;
-    double max_seconds = 10.0;
-    int json = 0, gl = 0;
-    long frames = 5;
-    opterr = 0;
-    optind = 1;
-    int c;
-    while ((c = getopt_long(argc, argv, ":h", longopts, NULL)) != -1) {
-        switch (c) {
-        case 'h': help(); return CLI_EXIT_OK;
-        case OPT_SCENE: scene_path = optarg; break;
-        case OPT_WIDTH:
-            if (cli_parse_int(CMD, "--width", optarg, 1, BIREF_SCENE_MAX_SIDE, &width)) return CLI_EXIT_USAGE;
-            break;
-        case OPT_HEIGHT:
-            if (cli_parse_int(CMD, "--height", optarg, 1, BIREF_SCENE_MAX_SIDE, &height)) return CLI_EXIT_USAGE;
-            break;
-        case OPT_METHODS: methods = optarg; break;
-        case OPT_MAX_SECONDS:
-            if (cli_parse_double(CMD, "--max-seconds", optarg, &max_seconds)) return CLI_EXIT_USAGE;
-            if (!(max_seconds > 0)) return cli_error(CMD, "--max-seconds: must be positive"), CLI_EXIT_USAGE;
-            break;
-        case OPT_THREADS:
-            if (cli_parse_int(CMD, "--threads", optarg, 1, 1024, &threads)) return CLI_EXIT_USAGE;
-            break;
-        case OPT_JSON: json = 1; break;
-        case OPT_BACKEND:
-            if (cli_parse_backend(CMD, optarg, &gl)) return CLI_EXIT_USAGE;
-            break;
-        case OPT_FRAMES:
-            if (cli_parse_int(CMD, "--frames", optarg, 1, 1000, &frames)) return CLI_EXIT_USAGE;
-            break;
-        default: cli_getopt_error(CMD, c, argv); return CLI_EXIT_USAGE;
-        }
-    }
-    if (optind < argc) return cli_error(CMD, "unexpected argument '%s'", argv[optind]), CLI_EXIT_USAGE;
-    bench_method m[MAX_METHODS];
-    int n_methods = 0;
-    if (parse_methods(methods, m, &n_methods)) return CLI_EXIT_USAGE;
-    biref_scene scene;
-    char default_scene[4096];
-    if (!scene_path) scene_path = cli_data_path("examples/fig9a.json", default_scene, sizeof default_scene);
-    int rc = cli_load_scene(CMD, scene_path, &scene);
-    if (!rc) rc = cli_scene_resize(CMD, &scene, width, height);
-    if (rc) return rc;
-    const int W = scene.camera.width, H = scene.camera.height;
-    const int n_threads = threads > 0 ? (int)threads : omp_get_max_threads();
+/* The command line, parsed. */
+typedef struct {
+    const char *scene_path, *methods;
+    long width, height, threads, frames;
+    double max_seconds;
+    int json, gl;
+} bench_args;
 
+enum { OPT_BACKEND = 1, OPT_MAX_SECONDS };
+
+static int handle(void *args, int code, const char *arg)
+{
+    bench_args *a = args;
+    if (code == OPT_BACKEND) return cli_parse_backend(CMD, arg, &a->gl);
+    if (cli_parse_double(CMD, "--max-seconds", arg, &a->max_seconds)) return -1;
+    if (!(a->max_seconds > 0)) return cli_error(CMD, "--max-seconds: must be positive"), -1;
+    return 0;
+}
+
+#define F(field) offsetof(bench_args, field)
+static const cli_opt OPTS[] = {
+    CLI_STRING("scene", 0, "FILE", F(scene_path),
+               "scene (default examples/fig9a.json; $BIREF_DATA_DIR or the installed copy\n"
+               "when not in the current directory)"),
+    CLI_INT("width", "W", F(width), 1, BIREF_SCENE_MAX_SIDE, "frame width (default 1920)"),
+    CLI_INT("height", "H", F(height), 1, BIREF_SCENE_MAX_SIDE, "frame height (default 1080)"),
+    CLI_STRING("methods", 0, "LIST", F(methods),
+               "comma-separated: analytic, expansion, ground-truth, numeric-N\n"
+               "(default " DEFAULT_METHODS ")"),
+    CLI_CUSTOM("max-seconds", "S", OPT_MAX_SECONDS, "time budget per method before extrapolating (default 10)"),
+    CLI_INT("threads", "T", F(threads), 1, 1024, "OpenMP threads (default: all cores)"),
+    CLI_CUSTOM("backend", "B", OPT_BACKEND,
+               "cpu (default) or gl: also time the analytic method as a GLSL shader\n"
+               "(GPU time from timer queries, median of --frames frames; docs/GPU.md)"),
+    CLI_INT("frames", "N", F(frames), 1, 1000, "gl: frames timed after one warm-up (default 5)"),
+    CLI_FLAG("json", 0, F(json),
+             "{width, height, threads, methods: [{method, ms_per_frame,\n"
+             "ns_per_pixel, extrapolated, rows_timed, cpu_ms_per_frame}]}"),
+};
+#undef F
+
+const cli_command_spec CLI_BENCH = {
+    "bench",
+    "usage: biref bench [OPTIONS]\n\n"
+    "Times rendering one frame of a scene with each spectral integration method, like the\n"
+    "paper's table 1. Set-up (look-up tables, sample plans) is not timed. A method whose\n"
+    "frame would take longer than --max-seconds is timed on evenly spaced rows and scaled\n"
+    "to the full frame (reported as extrapolated; its frame time is then the sampled CPU\n"
+    "time scaled to the frame and divided by the threads, as rows parallelise perfectly).\n\n"
+    "Options:\n",
+    OPTS,
+    CLI_OPTS_COUNT(OPTS),
+    "Frame time is wall-clock time; CPU time (all threads) is also shown because it hardly\n"
+    "changes when other jobs share the cores.\n",
+    0,
+    handle,
+    1,
+};
+
+/* Times each method on the scene with n_threads threads. Returns a CLI exit code. */
+static int time_methods(const biref_scene *scene, bench_method *m, int n_methods, int n_threads, double max_seconds)
+{
+    const int W = scene->camera.width, H = scene->camera.height;
     float *xyz = malloc((size_t)W * H * 3 * sizeof *xyz);
     if (!xyz) return cli_error(CMD, "out of memory for a %dx%d frame", W, H), CLI_EXIT_FAIL;
+    int rc = CLI_EXIT_OK;
     biref_progress_bar bar;
     biref_progress_bar_init(&bar, stderr, 1, "bench");
     for (int i = 0; i < n_methods && !rc; i++) {
         bench_method *b = &m[i];
         b->opt.threads = n_threads;
         biref_renderer *r = NULL;
-        if ((rc = cli_renderer_create(CMD, &scene, &b->opt, &r))) break;
+        if ((rc = cli_renderer_create(CMD, scene, &b->opt, &r))) break;
         biref_progress_bar_note(&bar, b->name);
         biref_progress_bar_update(&bar, i, n_methods);
         /* Probe one row per thread, then spend the budget on as many evenly spaced rows as fit
@@ -219,45 +195,54 @@ int cmd_bench(int argc, char **argv)
     if (!rc) biref_progress_bar_update(&bar, n_methods, n_methods);
     biref_progress_bar_finish(&bar);
     free(xyz);
-    if (rc) return rc;
-    double gl_gpu_ms = 0, gl_wall_ms = 0;
-    char gl_device[256] = "";
-    if (gl && (rc = cli_gl_bench(CMD, &scene, (int)frames, &gl_gpu_ms, &gl_wall_ms, gl_device, sizeof gl_device)))
-        return rc;
+    return rc;
+}
 
-    if (json) {
-        cJSON *root = cJSON_CreateObject();
-        cJSON_AddStringToObject(root, "scene", scene_path);
-        cJSON_AddNumberToObject(root, "width", W);
-        cJSON_AddNumberToObject(root, "height", H);
-        cJSON_AddNumberToObject(root, "threads", n_threads);
-        cJSON *arr = cJSON_AddArrayToObject(root, "methods");
-        for (int i = 0; i < n_methods; i++) {
-            cJSON *o = cJSON_CreateObject();
-            cJSON_AddStringToObject(o, "method", m[i].name);
-            cJSON_AddNumberToObject(o, "ms_per_frame", round(m[i].ms * 1000) / 1000);
-            cJSON_AddNumberToObject(o, "cpu_ms_per_frame", round(m[i].cpu_ms * 1000) / 1000);
-            cJSON_AddNumberToObject(o, "ns_per_pixel", round(m[i].ms * 1e6 / ((double)W * H) * 10) / 10);
-            cJSON_AddBoolToObject(o, "extrapolated", m[i].extrapolated);
-            cJSON_AddNumberToObject(o, "rows_timed", m[i].rows_timed);
-            cJSON_AddStringToObject(o, "backend", "cpu");
-            cJSON_AddItemToArray(arr, o);
-        }
-        if (gl) {
-            cJSON *o = cJSON_CreateObject();
-            cJSON_AddStringToObject(o, "method", "analytic");
-            cJSON_AddStringToObject(o, "backend", "gl");
-            cJSON_AddNumberToObject(o, "ms_per_frame", round(gl_gpu_ms * 1000) / 1000);
-            cJSON_AddNumberToObject(o, "gpu_ms_per_frame", round(gl_gpu_ms * 1000) / 1000);
-            cJSON_AddNumberToObject(o, "wall_ms_per_frame", round(gl_wall_ms * 1000) / 1000);
-            cJSON_AddNumberToObject(o, "ns_per_pixel", round(gl_gpu_ms * 1e6 / ((double)W * H) * 10) / 10);
-            cJSON_AddNumberToObject(o, "frames", (double)frames);
-            cJSON_AddStringToObject(o, "device", gl_device);
-            cJSON_AddItemToArray(arr, o);
-        }
-        return json_print_and_free(root) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
+/* The GL back-end's timing (--backend gl). */
+typedef struct {
+    double gpu_ms, wall_ms;
+    char device[256];
+} bench_gl;
+
+static int print_json(const bench_args *a, int W, int H, int n_threads, const bench_method *m, int n_methods,
+                      const bench_gl *g)
+{
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "scene", a->scene_path);
+    cJSON_AddNumberToObject(root, "width", W);
+    cJSON_AddNumberToObject(root, "height", H);
+    cJSON_AddNumberToObject(root, "threads", n_threads);
+    cJSON *arr = cJSON_AddArrayToObject(root, "methods");
+    for (int i = 0; i < n_methods; i++) {
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddStringToObject(o, "method", m[i].name);
+        cJSON_AddNumberToObject(o, "ms_per_frame", round(m[i].ms * 1000) / 1000);
+        cJSON_AddNumberToObject(o, "cpu_ms_per_frame", round(m[i].cpu_ms * 1000) / 1000);
+        cJSON_AddNumberToObject(o, "ns_per_pixel", round(m[i].ms * 1e6 / ((double)W * H) * 10) / 10);
+        cJSON_AddBoolToObject(o, "extrapolated", m[i].extrapolated);
+        cJSON_AddNumberToObject(o, "rows_timed", m[i].rows_timed);
+        cJSON_AddStringToObject(o, "backend", "cpu");
+        cJSON_AddItemToArray(arr, o);
     }
-    printf("Scene %s, %dx%d, %d thread%s\n\n", scene_path, W, H, n_threads, n_threads == 1 ? "" : "s");
+    if (a->gl) {
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddStringToObject(o, "method", "analytic");
+        cJSON_AddStringToObject(o, "backend", "gl");
+        cJSON_AddNumberToObject(o, "ms_per_frame", round(g->gpu_ms * 1000) / 1000);
+        cJSON_AddNumberToObject(o, "gpu_ms_per_frame", round(g->gpu_ms * 1000) / 1000);
+        cJSON_AddNumberToObject(o, "wall_ms_per_frame", round(g->wall_ms * 1000) / 1000);
+        cJSON_AddNumberToObject(o, "ns_per_pixel", round(g->gpu_ms * 1e6 / ((double)W * H) * 10) / 10);
+        cJSON_AddNumberToObject(o, "frames", (double)a->frames);
+        cJSON_AddStringToObject(o, "device", g->device);
+        cJSON_AddItemToArray(arr, o);
+    }
+    return json_print_and_free(root) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
+}
+
+static void print_table(const bench_args *a, int W, int H, int n_threads, const bench_method *m, int n_methods,
+                        const bench_gl *g)
+{
+    printf("Scene %s, %dx%d, %d thread%s\n\n", a->scene_path, W, H, n_threads, n_threads == 1 ? "" : "s");
     printf("%-34s %14s %12s %14s\n", "Spectral integration method", "Frame time", "ns/pixel", "CPU time");
     /* Grouped as in table 1: analytic first, then numeric by sample count, then ground truth;
      * the path-group expansion (beyond the paper) last. */
@@ -285,13 +270,40 @@ int cmd_bench(int argc, char **argv)
             printf("\n");
         }
     }
-    if (gl) {
+    if (a->gl) {
         char tm[32], wall[32];
-        format_time(gl_gpu_ms, tm, sizeof tm);
-        format_time(gl_wall_ms, wall, sizeof wall);
-        printf("GPU (OpenGL: %s)\n%-34s %14s %12.1f %14s\n", gl_device, "  analytic, GPU time", tm,
-               gl_gpu_ms * 1e6 / ((double)W * H), "-");
-        printf("%-34s %14s   (median of %ld frames, draw to read-back)\n", "  analytic, wall time", wall, frames);
+        format_time(g->gpu_ms, tm, sizeof tm);
+        format_time(g->wall_ms, wall, sizeof wall);
+        printf("GPU (OpenGL: %s)\n%-34s %14s %12.1f %14s\n", g->device, "  analytic, GPU time", tm,
+               g->gpu_ms * 1e6 / ((double)W * H), "-");
+        printf("%-34s %14s   (median of %ld frames, draw to read-back)\n", "  analytic, wall time", wall, a->frames);
     }
+}
+
+int cmd_bench(int argc, char **argv)
+{
+    bench_args a = {NULL, DEFAULT_METHODS, 1920, 1080, 0, 5, 10.0, 0, 0};
+    cli_parsed p;
+    int r = cli_opts_parse(&CLI_BENCH, &a, argc, argv, &p);
+    if (r) return r > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
+    if (p.n_args) return cli_error(CMD, "unexpected argument '%s'", argv[p.first_arg]), CLI_EXIT_USAGE;
+    bench_method m[MAX_METHODS];
+    int n_methods = 0;
+    if (parse_methods(a.methods, m, &n_methods)) return CLI_EXIT_USAGE;
+    biref_scene scene;
+    char default_scene[4096];
+    if (!a.scene_path) a.scene_path = cli_data_path("examples/fig9a.json", default_scene, sizeof default_scene);
+    int rc = cli_load_scene(CMD, a.scene_path, &scene);
+    if (!rc) rc = cli_scene_resize(CMD, &scene, a.width, a.height);
+    if (rc) return rc;
+    const int W = scene.camera.width, H = scene.camera.height;
+    const int n_threads = a.threads > 0 ? (int)a.threads : omp_get_max_threads();
+    if ((rc = time_methods(&scene, m, n_methods, n_threads, a.max_seconds)))
+        return rc;
+    bench_gl g = {0, 0, ""};
+    if (a.gl && (rc = cli_gl_bench(CMD, &scene, (int)a.frames, &g.gpu_ms, &g.wall_ms, g.device, sizeof g.device)))
+        return rc;
+    if (a.json) return print_json(&a, W, H, n_threads, m, n_methods, &g);
+    print_table(&a, W, H, n_threads, m, n_methods, &g);
     return CLI_EXIT_OK;
 }

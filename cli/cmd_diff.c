@@ -1,5 +1,6 @@
 /* biref diff: per-pixel CIEDE2000 between two PNGs, a colour-coded map and statistics. */
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,24 +13,39 @@
 
 static const char *const CMD = "diff";
 
-static void help(void)
-{
-    printf("usage: biref diff A.png B.png [-o MAP.png] [--json]\n\n"
-           "Decodes both images as sRGB, converts each pixel to XYZ (white E) and computes the\n"
-           "CIEDE2000 colour difference dE00. Prints the mean, 95th percentile and maximum, and\n"
-           "optionally writes a difference map coloured on a fixed scale (linear between stops):\n"
-           "  " CLI_DE_SCALE_TEXT ",\n"
-           "the scale of every dE00 map biref draws (biref figure fig9, aliasing), with a legend\n"
-           "strip below the map (--no-legend: the map alone, pixel for pixel).\n\n"
-           "Options:\n"
-           "  -o, --output FILE    write the difference map (PNG)\n"
-           "  --no-legend          write the map without the legend strip\n"
-           "  --json               {width, height, mean, p95, p99, max, over_1, over_4} on stdout\n"
-           "                       (over_N: fraction of pixels with dE00 > N)\n"
-           "  -h, --help           this help\n\n"
-           "Both images must have the same size. Exit status 0 (whatever the difference), 1 on an\n"
-           "I/O failure, 2 on bad usage or unreadable/mismatched images.\n");
-}
+typedef struct {
+    const char *out;
+    int json, no_legend;
+} diff_args;
+
+#define F(field) offsetof(diff_args, field)
+static const cli_opt OPTS[] = {
+    CLI_STRING("output", 'o', "FILE", F(out), "write the difference map (PNG)"),
+    CLI_FLAG("no-legend", 0, F(no_legend), "write the map without the legend strip"),
+    CLI_FLAG("json", 0, F(json),
+             "{width, height, mean, p95, p99, max, over_1, over_4} on stdout\n"
+             "(over_N: fraction of pixels with dE00 > N)"),
+};
+#undef F
+
+const cli_command_spec CLI_DIFF = {
+    "diff",
+    "usage: biref diff A.png B.png [-o MAP.png] [--json]\n\n"
+    "Decodes both images as sRGB, converts each pixel to XYZ (white E) and computes the\n"
+    "CIEDE2000 colour difference dE00. Prints the mean, 95th percentile and maximum, and\n"
+    "optionally writes a difference map coloured on a fixed scale (linear between stops):\n"
+    "  " CLI_DE_SCALE_TEXT ",\n"
+    "the scale of every dE00 map biref draws (biref figure fig9, aliasing), with a legend\n"
+    "strip below the map (--no-legend: the map alone, pixel for pixel).\n\n"
+    "Options:\n",
+    OPTS,
+    CLI_OPTS_COUNT(OPTS),
+    "Both images must have the same size. Exit status 0 (whatever the difference), 1 on an\n"
+    "I/O failure, 2 on bad usage or unreadable/mismatched images.\n",
+    0,
+    NULL,
+    0,
+};
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -39,29 +55,15 @@ static int cmp_double(const void *a, const void *b)
 
 int cmd_diff(int argc, char **argv)
 {
-    enum { OPT_JSON = 4000, OPT_NO_LEGEND };
-    static const struct option longopts[] = {{"output", required_argument, 0, 'o'},
-                                             {"json", no_argument, 0, OPT_JSON},
-                                             {"no-legend", no_argument, 0, OPT_NO_LEGEND},
-                                             {"help", no_argument, 0, 'h'},
-                                             {0, 0, 0, 0}};
-    const char *out = NULL;
-    int json = 0, legend = 1;
-    opterr = 0;
-    optind = 1;
-    int c;
-    while ((c = getopt_long(argc, argv, ":ho:", longopts, NULL)) != -1) {
-        switch (c) {
-        case 'h': help(); return CLI_EXIT_OK;
-        case 'o': out = optarg; break;
-        case OPT_JSON: json = 1; break;
-        case OPT_NO_LEGEND: legend = 0; break;
-        default: cli_getopt_error(CMD, c, argv); return CLI_EXIT_USAGE;
-        }
-    }
-    if (argc - optind < 2) return cli_error(CMD, "expected two images A.png B.png (see biref diff --help)"), CLI_EXIT_USAGE;
-    if (argc - optind > 2) return cli_error(CMD, "unexpected argument '%s'", argv[optind + 2]), CLI_EXIT_USAGE;
-    const char *pa = argv[optind], *pb = argv[optind + 1];
+    diff_args args = {NULL, 0, 0};
+    cli_parsed parsed;
+    int r = cli_opts_parse(&CLI_DIFF, &args, argc, argv, &parsed);
+    if (r) return r > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
+    const char *out = args.out;
+    const int json = args.json, legend = !args.no_legend, first_arg = parsed.first_arg;
+    if (argc - first_arg < 2) return cli_error(CMD, "expected two images A.png B.png (see biref diff --help)"), CLI_EXIT_USAGE;
+    if (argc - first_arg > 2) return cli_error(CMD, "unexpected argument '%s'", argv[first_arg + 2]), CLI_EXIT_USAGE;
+    const char *pa = argv[first_arg], *pb = argv[first_arg + 1];
     const char *inputs[2] = {pa, pb};
     int rc_out = out ? cli_check_output(CMD, out, inputs, 2) : 0;
     if (rc_out) return rc_out;

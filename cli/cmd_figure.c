@@ -4,6 +4,7 @@
 #include <cairo.h>
 #include <errno.h>
 #include <math.h>
+#include <stddef.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,27 +23,6 @@
 #include "outfile.h"
 
 
-static void help(void)
-{
-    printf("usage: biref figure NAME -o DIR [--quick] [--threads T]\n\n"
-           "Regenerates a figure or table of the paper as PNG plots plus CSV numbers in DIR.\n\n"
-           "NAME:\n"
-           "  fig5     |J|, |J_s|, |J_p| of transmission vs angle (random polarisation, 550 nm)\n"
-           "  fig6c    chromaticity vs angle of the s->p transmission, analytic vs ground truth\n"
-           "  fig7     CIEDE2000 of analytic vs ground truth as a function of angle and birefringence\n"
-           "  fig9     renders of examples/fig9{a,b,c}.json with every method, with error maps\n"
-           "  table1   time per 1920x1080 frame of each method on examples/fig9a.json\n"
-           "  aliasing plain, prefiltered (--antialias) and 4x4 super-sampled renders of scenes made\n"
-           "           to alias against a 32x32 super-sampled reference, with dE00 maps and costs\n"
-           "  all      everything above\n\n"
-           "Options:\n"
-           "  -o, --output DIR     output directory (created if missing; its parent must exist)\n"
-           "  --quick              fewer samples and smaller images (seconds instead of minutes)\n"
-           "  --threads T          OpenMP threads (default: all cores)\n"
-           "  --scenes DIR         where fig9a/b/c.json are (default: examples, from $BIREF_DATA_DIR\n"
-           "                       or the installed copy when not in the current directory)\n"
-           "  -h, --help           this help\n");
-}
 
 /* ------------------------------------------------------------------------ */
 /* Small utilities                                                           */
@@ -328,39 +308,63 @@ static int check_scenes(const char *scenes, int fig9_on, int table1_on)
     return 0;
 }
 
-enum { OPT_QUICK = 1000, OPT_THREADS, OPT_SCENES };
+/* The command line, parsed. */
+typedef struct {
+    const char *dir, *scenes;
+    int quick;
+    long threads;
+} figure_args;
+
+#define F(field) offsetof(figure_args, field)
+static const cli_opt OPTS[] = {
+    CLI_STRING("output", 'o', "DIR", F(dir), "output directory (created if missing; its parent must exist)"),
+    CLI_FLAG("quick", 0, F(quick), "fewer samples and smaller images (seconds instead of minutes)"),
+    CLI_INT("threads", "T", F(threads), 1, 1024, "OpenMP threads (default: all cores)"),
+    CLI_STRING("scenes", 0, "DIR", F(scenes),
+               "where fig9a/b/c.json are (default: examples, from $BIREF_DATA_DIR\n"
+               "or the installed copy when not in the current directory)"),
+    {.name = "out", .kind = CLI_OPT_STRING, .value = "DIR", .offset = F(dir), .old_of = "output",
+     .help = "-o, --output DIR"},
+};
+#undef F
+
+const cli_command_spec CLI_FIGURE = {
+    "figure",
+    "usage: biref figure NAME -o DIR [--quick] [--threads T]\n\n"
+    "Regenerates a figure or table of the paper as PNG plots plus CSV numbers in DIR.\n\n"
+    "NAME:\n"
+    "  fig5     |J|, |J_s|, |J_p| of transmission vs angle (random polarisation, 550 nm)\n"
+    "  fig6c    chromaticity vs angle of the s->p transmission, analytic vs ground truth\n"
+    "  fig7     CIEDE2000 of analytic vs ground truth as a function of angle and birefringence\n"
+    "  fig9     renders of examples/fig9{a,b,c}.json with every method, with error maps\n"
+    "  table1   time per 1920x1080 frame of each method on examples/fig9a.json\n"
+    "  aliasing plain, prefiltered (--antialias) and 4x4 super-sampled renders of scenes made\n"
+    "           to alias against a 32x32 super-sampled reference, with dE00 maps and costs\n"
+    "  all      everything above\n\n"
+    "Options:\n",
+    OPTS,
+    CLI_OPTS_COUNT(OPTS),
+    NULL,
+    0,
+    NULL,
+    1,
+};
 
 int cmd_figure(int argc, char **argv)
 {
-    static const struct option longopts[] = {{"output", required_argument, 0, 'o'},
-                                             {"out", required_argument, 0, 'o'}, /* old name */
-                                             {"quick", no_argument, 0, OPT_QUICK},
-                                             {"threads", required_argument, 0, OPT_THREADS},
-                                             {"scenes", required_argument, 0, OPT_SCENES},
-                                             {"help", no_argument, 0, 'h'},
-                                             {0, 0, 0, 0}};
+    figure_args a = {NULL, NULL, 0, 0};
+    cli_parsed p;
+    int r = cli_opts_parse(&CLI_FIGURE, &a, argc, argv, &p);
+    if (r) return r > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
     fig_ctx c = {0};
-    const char *scenes = NULL;
-    long v;
-    opterr = 0;
-    optind = 1;
-    int ch;
-    while ((ch = getopt_long(argc, argv, ":ho:", longopts, NULL)) != -1) {
-        switch (ch) {
-        case 'h': help(); return CLI_EXIT_OK;
-        case 'o': c.dir = optarg; break;
-        case OPT_QUICK: c.quick = 1; break;
-        case OPT_THREADS:
-            if (cli_parse_int(FIG_CMD, "--threads", optarg, 1, 1024, &v)) return CLI_EXIT_USAGE;
-            c.threads = (int)v;
-            break;
-        case OPT_SCENES: scenes = optarg; break;
-        default: cli_getopt_error(FIG_CMD, ch, argv); return CLI_EXIT_USAGE;
-        }
-    }
-    if (optind >= argc) return cli_error(FIG_CMD, "missing figure name (fig5, fig6c, fig7, fig9, table1, aliasing or all)"), CLI_EXIT_USAGE;
-    if (optind + 1 < argc) return cli_error(FIG_CMD, "unexpected argument '%s'", argv[optind + 1]), CLI_EXIT_USAGE;
-    const char *name = argv[optind];
+    c.dir = a.dir;
+    c.quick = a.quick;
+    c.threads = (int)a.threads;
+    const char *scenes = a.scenes;
+    const int first_arg = p.first_arg;
+    if (first_arg >= argc) return cli_error(FIG_CMD, "missing figure name (fig5, fig6c, fig7, fig9, table1, aliasing or all)"), CLI_EXIT_USAGE;
+    if (first_arg + 1 < argc) return cli_error(FIG_CMD, "unexpected argument '%s'", argv[first_arg + 1]), CLI_EXIT_USAGE;
+    const char *name = argv[first_arg];
     char default_scenes[4096];
     if (!scenes) scenes = cli_data_path("examples", default_scenes, sizeof default_scenes);
     static const char *const NAMES[] = {"fig5", "fig6c", "fig7", "fig9", "table1", "aliasing"};

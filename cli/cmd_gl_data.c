@@ -1,6 +1,7 @@
 /* biref gl-data: the browser viewer's data (web/biref_data.js) from the library: the GLSL
  * source, the look-up table and the uniforms of a set of scenes (docs/GPU.md). */
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,19 +13,31 @@
 
 static const char *const CMD = "gl-data";
 
-static void help(void)
-{
-    printf("usage: biref gl-data -o FILE.js SCENE.json...\n\n"
-           "Writes a JavaScript module for the WebGL2 viewer (web/index.html): the GLSL source of the\n"
-           "analytic method (shaders/biref_analytic.glsl, as compiled into the library), the look-up\n"
-           "table of S(cos kD), S(sin kD) and the coherent regime's sample plans as float texels, and\n"
-           "each scene's shader uniforms as a\n"
-           "preset named after its file. The repository's copy is made with\n"
-           "  biref gl-data -o web/biref_data.js examples/*.json\n\n"
-           "Options:\n"
-           "  -o, --output FILE    the module to write (required)\n"
-           "  -h, --help           this help\n");
-}
+typedef struct {
+    const char *out;
+} gl_data_args;
+
+static const cli_opt OPTS[] = {
+    CLI_STRING("output", 'o', "FILE", offsetof(gl_data_args, out), "the module to write (required)"),
+};
+
+const cli_command_spec CLI_GL_DATA = {
+    "gl-data",
+    "usage: biref gl-data -o FILE.js SCENE.json...\n\n"
+    "Writes a JavaScript module for the WebGL2 viewer (web/index.html): the GLSL source of the\n"
+    "analytic method (shaders/biref_analytic.glsl, as compiled into the library), the look-up\n"
+    "table of S(cos kD), S(sin kD) and the coherent regime's sample plans as float texels, and\n"
+    "each scene's shader uniforms as a\n"
+    "preset named after its file. The repository's copy is made with\n"
+    "  biref gl-data -o web/biref_data.js examples/*.json\n\n"
+    "Options:\n",
+    OPTS,
+    CLI_OPTS_COUNT(OPTS),
+    NULL,
+    0,
+    NULL,
+    0,
+};
 
 static void add_uniform(void *user, const char *name, int comps, int count, const float *v)
 {
@@ -55,21 +68,14 @@ static const char *basename_of(const char *path, char *buf, size_t n)
 
 int cmd_gl_data(int argc, char **argv)
 {
-    static const struct option longopts[] = {
-        {"output", required_argument, 0, 'o'}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
-    const char *out = NULL;
-    opterr = 0;
-    optind = 1;
-    int c;
-    while ((c = getopt_long(argc, argv, ":ho:", longopts, NULL)) != -1) {
-        switch (c) {
-        case 'h': help(); return CLI_EXIT_OK;
-        case 'o': out = optarg; break;
-        default: cli_getopt_error(CMD, c, argv); return CLI_EXIT_USAGE;
-        }
-    }
+    gl_data_args args = {NULL};
+    cli_parsed parsed;
+    int r = cli_opts_parse(&CLI_GL_DATA, &args, argc, argv, &parsed);
+    if (r) return r > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
+    const char *out = args.out;
+    const int first_arg = parsed.first_arg;
     if (!out) return cli_error(CMD, "missing -o FILE.js"), CLI_EXIT_USAGE;
-    if (optind >= argc) return cli_error(CMD, "missing SCENE.json (see biref gl-data --help)"), CLI_EXIT_USAGE;
+    if (first_arg >= argc) return cli_error(CMD, "missing SCENE.json (see biref gl-data --help)"), CLI_EXIT_USAGE;
     int rc = cli_check_writable(CMD, out);
     if (rc) return rc;
     biref_spectral *sp = NULL;
@@ -78,7 +84,7 @@ int cmd_gl_data(int argc, char **argv)
         return cli_error(CMD, "cannot build the look-up table: %s", why), CLI_EXIT_FAIL;
 
     cJSON *presets = cJSON_CreateObject();
-    for (int i = optind; i < argc && !rc; i++) {
+    for (int i = first_arg; i < argc && !rc; i++) {
         biref_scene scene;
         if ((rc = cli_load_scene(CMD, argv[i], &scene))) break;
         char name[256];
@@ -162,6 +168,6 @@ int cmd_gl_data(int argc, char **argv)
     free(tex);
     cJSON_Delete(presets);
     biref_spectral_destroy(sp);
-    if (!rc) printf("wrote %s (%d texels, %d presets)\n", out, info.width * info.height, argc - optind);
+    if (!rc) printf("wrote %s (%d texels, %d presets)\n", out, info.width * info.height, argc - first_arg);
     return rc;
 }

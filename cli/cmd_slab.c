@@ -1,5 +1,6 @@
 /* biref slab: Jones matrices and power fractions of one slab at one (theta, lambda). */
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -9,21 +10,55 @@
 
 static const char *const CMD = "slab";
 
-static void help(void)
+enum { OPT_LAMBDA = OPT_SLAB_LAST + 1, OPT_METHOD };
+
+/* The command line, parsed. */
+typedef struct {
+    cli_slab_opts so;
+    double lambda;
+    int json, tmm;
+} slab_args;
+
+static int handle(void *args, int code, const char *arg)
 {
-    printf("usage: biref slab [OPTIONS]\n\n"
-           "Transmission and reflection of a plane wave by a uniaxial slab at one wavelength:\n"
-           "2x2 Jones matrices (input s/p -> output s/p), power fractions, normal modes.\n\n"
-           "Options:\n" CLI_SLAB_HELP
-           "  --lambda-nm L        vacuum wavelength in nm (default 550)\n"
-           "  --method M           closed-form (default; paper eq. 17) or tmm (4x4 transfer matrix)\n"
-           "  --json               machine-readable output\n"
-           "  -h, --help           this help\n\n"
-           "Example:\n  biref slab --eta-o 1.775 --eta-e 1.231 --axis 0.084,0.979,-0.187 \\\n"
-           "             --thickness-mm 1.15 --theta-deg 30 --lambda-nm 550 --json\n");
+    slab_args *a = args;
+    int r = cli_slab_opts_handle(CMD, &a->so, code, arg);
+    if (r) return r < 0 ? -1 : 0;
+    if (code == OPT_LAMBDA) {
+        if (cli_parse_double(CMD, "--lambda-nm", arg, &a->lambda)) return -1;
+        if (a->lambda <= 0) return cli_error(CMD, "--lambda-nm: must be positive, got %g", a->lambda), -1;
+        return 0;
+    }
+    if (!strcmp(arg, "closed-form"))
+        a->tmm = 0;
+    else if (!strcmp(arg, "tmm"))
+        a->tmm = 1;
+    else
+        return cli_error(CMD, "--method: expected closed-form or tmm, got '%s'", arg), -1;
+    return 0;
 }
 
-enum { OPT_LAMBDA = OPT_SLAB_LAST + 1, OPT_METHOD, OPT_JSON };
+static const cli_opt OPTS[] = {
+    CLI_SLAB_OPTIONS,
+    CLI_CUSTOM("lambda-nm", "L", OPT_LAMBDA, "vacuum wavelength in nm (default 550)"),
+    CLI_CUSTOM("method", "M", OPT_METHOD, "closed-form (default; paper eq. 17) or tmm (4x4 transfer matrix)"),
+    CLI_FLAG("json", 0, offsetof(slab_args, json), "machine-readable output"),
+};
+
+const cli_command_spec CLI_SLAB = {
+    "slab",
+    "usage: biref slab [OPTIONS]\n\n"
+    "Transmission and reflection of a plane wave by a uniaxial slab at one wavelength:\n"
+    "2x2 Jones matrices (input s/p -> output s/p), power fractions, normal modes.\n\n"
+    "Options:\n",
+    OPTS,
+    CLI_OPTS_COUNT(OPTS),
+    "Example:\n  biref slab --eta-o 1.775 --eta-e 1.231 --axis 0.084,0.979,-0.187 \\\n"
+    "             --thickness-mm 1.15 --theta-deg 30 --lambda-nm 550 --json\n",
+    0,
+    handle,
+    0,
+};
 
 static const char *const MODE_NAMES[4] = {"o_down", "e_down", "o_up", "e_up"};
 static const char *const SP[2] = {"s", "p"};
@@ -61,43 +96,18 @@ static void print_table(const char *title, const biref_jones *J, double P[2][2])
 
 int cmd_slab(int argc, char **argv)
 {
-    cli_slab_opts so;
-    cli_slab_opts_init(&so);
-    double lambda = 550.0;
-    int json = 0, tmm = 0;
-    static const struct option longopts[] = {CLI_SLAB_LONG_OPTIONS,
-                                             {"lambda-nm", required_argument, 0, OPT_LAMBDA},
-                                             {"method", required_argument, 0, OPT_METHOD},
-                                             {"json", no_argument, 0, OPT_JSON},
-                                             {"help", no_argument, 0, 'h'},
-                                             {0, 0, 0, 0}};
-    opterr = 0;
-    optind = 1;
-    int c;
-    while ((c = getopt_long(argc, argv, ":h", longopts, NULL)) != -1) {
-        int r = cli_slab_opts_handle(CMD, &so, c, optarg);
-        if (r < 0) return CLI_EXIT_USAGE;
-        if (r > 0) continue;
-        switch (c) {
-        case 'h': help(); return CLI_EXIT_OK;
-        case OPT_LAMBDA:
-            if (cli_parse_double(CMD, "--lambda-nm", optarg, &lambda)) return CLI_EXIT_USAGE;
-            if (lambda <= 0) return cli_error(CMD, "--lambda-nm: must be positive, got %g", lambda), CLI_EXIT_USAGE;
-            break;
-        case OPT_METHOD:
-            if (!strcmp(optarg, "closed-form"))
-                tmm = 0;
-            else if (!strcmp(optarg, "tmm"))
-                tmm = 1;
-            else
-                return cli_error(CMD, "--method: expected closed-form or tmm, got '%s'", optarg), CLI_EXIT_USAGE;
-            break;
-        case OPT_JSON: json = 1; break;
-        default: cli_getopt_error(CMD, c, argv); return CLI_EXIT_USAGE;
-        }
-    }
-    if (optind < argc) return cli_error(CMD, "unexpected argument '%s'", argv[optind]), CLI_EXIT_USAGE;
-    if (cli_slab_opts_finish(CMD, &so)) return CLI_EXIT_USAGE;
+    slab_args a;
+    memset(&a, 0, sizeof a);
+    cli_slab_opts_init(&a.so);
+    a.lambda = 550.0;
+    cli_parsed p;
+    int r = cli_opts_parse(&CLI_SLAB, &a, argc, argv, &p);
+    if (r) return r > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
+    if (p.n_args) return cli_error(CMD, "unexpected argument '%s'", argv[p.first_arg]), CLI_EXIT_USAGE;
+    if (cli_slab_opts_finish(CMD, &a.so)) return CLI_EXIT_USAGE;
+    const cli_slab_opts so = a.so;
+    const double lambda = a.lambda;
+    const int json = a.json, tmm = a.tmm;
 
     double theta = so.theta_deg * M_PI / 180.0;
     biref_slab_state st;

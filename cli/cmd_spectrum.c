@@ -2,6 +2,7 @@
  * approximation (eq. 26), by N-sample numeric integration of eq. 17, by the ground truth, or by
  * the exact integral of the path-group expansion; any incident polarisation and analyzer. */
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -22,47 +23,12 @@ enum {
     MAX_SAMPLES = 1 << 24
 };
 
-static void help(void)
-{
-    printf("usage: biref spectrum [OPTIONS]\n\n"
-           "Colour of the light transmitted (T) and reflected (R) by a uniaxial slab at one angle:\n"
-           "band-normalised CIE XYZ (a flat spectrum gives 1,1,1; white E) for each input/output\n"
-           "polarisation pair, and the mixed colour for a given incident light and analyzer.\n\n"
-           "Options:\n" CLI_SLAB_HELP
-           "  --method M           analytic (default; paper eq. 26), numeric (N samples of eq. 17),\n"
-           "                       ground-truth (numeric, 16384 samples) or expansion (exact integral\n"
-           "                       of the path-group expansion, docs/PHYSICS.md §5)\n"
-           "  --spectral-samples N samples of the numeric method, N >= 1 (default 64; numeric only)\n"
-           "  --order N            expansion: every pair of path groups up to order N interferes,\n"
-           "                       the rest adds incoherently, 0-8 (default adaptive)\n"
-           "  --tolerance E        expansion: adaptive orders' target relative error (default 1e-3;\n"
-           "                       docs/PHYSICS.md section 5)\n"
-           "  --cmf C              cie1931 (default, tabulated) or wyman2013 (analytic fit)\n"
-           "  --range-nm MIN,MAX   integration band in nm (default 380,700)\n"
-           "  --polarization P     incident light: s, p, unpolarized (default) or S,P weights\n"
-           "                       (normalised to sum 1, e.g. 0.75,0.25)\n"
-           "  --polarizer P        fully polarised input: linear:DEG (from s towards p) or\n"
-           "                       circular:+1|-1 (sign of S3); replaces --polarization\n"
-           "  --stokes S0,S1,S2,S3 any (partially) polarised input in the s/p basis\n"
-           "  --analyzer A         none (default), s, p, linear:DEG or circular:+1|-1\n"
-           "                       (linear/circular/--polarizer/--stokes need numeric, ground-truth\n"
-           "                       or expansion: the paper's method handles s/p only)\n"
-           "  --json               machine-readable output\n"
-           "  -h, --help           this help\n\n"
-           "sRGB values are encoded (non-linear) and not clamped: out-of-gamut colours fall outside\n"
-           "[0, 1]. Only the terminal swatch is clamped.\n\n"
-           "Example:\n  biref spectrum --eta-o 1.775 --eta-e 1.231 --axis 0.084,0.979,-0.187 \\\n"
-           "                --thickness-um 20 --theta-deg 30 --polarization 0.02,0.98 --analyzer s\n");
-}
-
 enum {
     OPT_METHOD = OPT_SLAB_LAST + 1,
-    OPT_SAMPLES,
     OPT_CMF,
     OPT_RANGE,
     OPT_POL,
     OPT_ANALYZER,
-    OPT_JSON,
     OPT_ORDER,
     OPT_TOLERANCE,
     OPT_POLARIZER,
@@ -114,17 +80,18 @@ typedef struct {
     int order_used[2];
 } spectrum_result;
 
-/* One option of the command (not a slab option). Returns 0, 1 after --help, -1 on bad usage. */
-static int handle_option(spectrum_args *a, int c, char **argv)
+/* One option of the command. Returns 0, or -1 after one error line. */
+static int handle(void *args, int c, const char *optarg)
 {
+    spectrum_args *a = args;
+    int r = cli_slab_opts_handle(CMD, &a->so, c, optarg);
+    if (r) return r < 0 ? -1 : 0;
     switch (c) {
-    case 'h': help(); return 1;
     case OPT_METHOD:
         if (biref_method_from_name(optarg, &a->method) != BIREF_OK)
             return cli_error(CMD, "--method: expected analytic, numeric, ground-truth or expansion, got '%s'", optarg),
                    -1;
         return 0;
-    case OPT_SAMPLES: return cli_parse_int(CMD, "--spectral-samples", optarg, 1, MAX_SAMPLES, &a->samples) ? -1 : 0;
     case OPT_CMF:
         if (biref_cmf_kind_from_name(optarg, &a->cfg.cmf) != BIREF_OK)
             return cli_error(CMD, "--cmf: expected cie1931 or wyman2013, got '%s'", optarg), -1;
@@ -166,10 +133,56 @@ static int handle_option(spectrum_args *a, int c, char **argv)
         if (cli_parse_expansion_tolerance(CMD, optarg, &a->eopts)) return -1;
         a->have_tol = 1;
         return 0;
-    case OPT_JSON: a->json = 1; return 0;
-    default: cli_getopt_error(CMD, c, argv); return -1;
+    default: return -1;
     }
 }
+
+#define F(field) offsetof(spectrum_args, field)
+static const cli_opt OPTS[] = {
+    CLI_SLAB_OPTIONS,
+    CLI_CUSTOM("method", "M", OPT_METHOD,
+               "analytic (default; paper eq. 26), numeric (N samples of eq. 17),\n"
+               "ground-truth (numeric, 16384 samples) or expansion (exact integral\n"
+               "of the path-group expansion, docs/PHYSICS.md §5)"),
+    CLI_INT("spectral-samples", "N", F(samples), 1, MAX_SAMPLES,
+            "samples of the numeric method, N >= 1 (default 64; numeric only)"),
+    CLI_EXPANSION_OPTIONS(OPT_ORDER, OPT_TOLERANCE),
+    CLI_CUSTOM("cmf", "C", OPT_CMF, "cie1931 (default, tabulated) or wyman2013 (analytic fit)"),
+    CLI_CUSTOM("range-nm", "MIN,MAX", OPT_RANGE, "integration band in nm (default 380,700)"),
+    CLI_CUSTOM("polarization", "P", OPT_POL,
+               "incident light: s, p, unpolarized (default) or S,P weights\n"
+               "(normalised to sum 1, e.g. 0.75,0.25)"),
+    CLI_CUSTOM("polarizer", "P", OPT_POLARIZER,
+               "fully polarised input: linear:DEG (from s towards p) or\n"
+               "circular:+1|-1 (sign of S3); replaces --polarization"),
+    CLI_CUSTOM("stokes", "S0,S1,S2,S3", OPT_STOKES, "any (partially) polarised input in the s/p basis"),
+    CLI_CUSTOM("analyzer", "A", OPT_ANALYZER,
+               "none (default), s, p, linear:DEG or circular:+1|-1\n"
+               "(linear/circular/--polarizer/--stokes need numeric, ground-truth\n"
+               "or expansion: the paper's method handles s/p only)"),
+    CLI_FLAG("json", 0, F(json), "machine-readable output"),
+    {.name = "samples", .kind = CLI_OPT_INT, .value = "N", .offset = F(samples), .lo = 1, .hi = MAX_SAMPLES,
+     .old_of = "spectral-samples"},
+};
+#undef F
+
+const cli_command_spec CLI_SPECTRUM = {
+    "spectrum",
+    "usage: biref spectrum [OPTIONS]\n\n"
+    "Colour of the light transmitted (T) and reflected (R) by a uniaxial slab at one angle:\n"
+    "band-normalised CIE XYZ (a flat spectrum gives 1,1,1; white E) for each input/output\n"
+    "polarisation pair, and the mixed colour for a given incident light and analyzer.\n\n"
+    "Options:\n",
+    OPTS,
+    CLI_OPTS_COUNT(OPTS),
+    "sRGB values are encoded (non-linear) and not clamped: out-of-gamut colours fall outside\n"
+    "[0, 1]. Only the terminal swatch is clamped.\n\n"
+    "Example:\n  biref spectrum --eta-o 1.775 --eta-e 1.231 --axis 0.084,0.979,-0.187 \\\n"
+    "                --thickness-um 20 --theta-deg 30 --polarization 0.02,0.98 --analyzer s\n",
+    0,
+    handle,
+    0,
+};
 
 /* Options that only make sense together. Returns 0 or -1 (one error line printed). */
 static int check_args(spectrum_args *a)
@@ -211,32 +224,10 @@ static int parse(int argc, char **argv, spectrum_args *a)
     cli_light_default(&a->light);
     biref_expansion_opts_default(&a->eopts);
     a->stokes[0] = 1.0;
-    static const struct option longopts[] = {CLI_SLAB_LONG_OPTIONS,
-                                             {"order", required_argument, 0, OPT_ORDER},
-                                             {"tolerance", required_argument, 0, OPT_TOLERANCE},
-                                             {"polarizer", required_argument, 0, OPT_POLARIZER},
-                                             {"stokes", required_argument, 0, OPT_STOKES},
-                                             {"method", required_argument, 0, OPT_METHOD},
-                                             {"spectral-samples", required_argument, 0, OPT_SAMPLES},
-                                             {"samples", required_argument, 0, OPT_SAMPLES}, /* old name */
-                                             {"cmf", required_argument, 0, OPT_CMF},
-                                             {"range-nm", required_argument, 0, OPT_RANGE},
-                                             {"polarization", required_argument, 0, OPT_POL},
-                                             {"analyzer", required_argument, 0, OPT_ANALYZER},
-                                             {"json", no_argument, 0, OPT_JSON},
-                                             {"help", no_argument, 0, 'h'},
-                                             {0, 0, 0, 0}};
-    opterr = 0;
-    optind = 1;
-    int c;
-    while ((c = getopt_long(argc, argv, ":h", longopts, NULL)) != -1) {
-        int r = cli_slab_opts_handle(CMD, &a->so, c, optarg);
-        if (r < 0) return -1;
-        if (r > 0) continue;
-        r = handle_option(a, c, argv);
-        if (r) return r;
-    }
-    if (optind < argc) return cli_error(CMD, "unexpected argument '%s'", argv[optind]), -1;
+    cli_parsed p;
+    int r = cli_opts_parse(&CLI_SPECTRUM, a, argc, argv, &p);
+    if (r) return r;
+    if (p.n_args) return cli_error(CMD, "unexpected argument '%s'", argv[p.first_arg]), -1;
     return check_args(a);
 }
 

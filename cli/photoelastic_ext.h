@@ -1,6 +1,6 @@
 /* biref photoelastic: stress from finite-element nodes, full-field maps, float pictures, phase-
- * stepped image sets, colour key and scale bar (docs/PHOTOELASTICITY.md). cmd_photoelastic.c
- * parses its own options and hands these to pe_ext_*. */
+ * stepped image sets, colour key and scale bar (docs/PHOTOELASTICITY.md). photoelastic_args.c
+ * parses the options and hands these to pe_ext_option. */
 #ifndef BIREF_CLI_PHOTOELASTIC_EXT_H
 #define BIREF_CLI_PHOTOELASTIC_EXT_H
 
@@ -20,14 +20,6 @@ enum {
     OPT_PE_SCALE_BAR,
     OPT_PE_FORMAT
 };
-
-#define PE_EXT_LONG_OPTIONS                                                                          \
-    {"stress-nodes", required_argument, 0, OPT_PE_NODES}, {"columns", required_argument, 0, OPT_PE_COLUMNS}, \
-        {"length-unit", required_argument, 0, OPT_PE_LENGTH_UNIT},                                   \
-        {"stress-unit", required_argument, 0, OPT_PE_STRESS_UNIT},                                   \
-        {"boundary", required_argument, 0, OPT_PE_BOUNDARY}, {"map", required_argument, 0, OPT_PE_MAP}, \
-        {"format", required_argument, 0, OPT_PE_FORMAT}, {"pfm", no_argument, 0, OPT_PE_PFM}, {"phase-steps", required_argument, 0, OPT_PE_PHASE_STEPS}, \
-        {"key", no_argument, 0, OPT_PE_KEY}, {"scale-bar", no_argument, 0, OPT_PE_SCALE_BAR}
 
 typedef struct {
     const char *nodes_path, *boundary_path;
@@ -57,8 +49,8 @@ typedef struct {
 
 void pe_ext_init(pe_ext *e);
 void pe_ext_free(pe_ext *e);
-void pe_ext_help(void);
-/* 1 handled, 0 not an extension option, -1 error printed. */
+/* Parses the extension option with this code (OPT_PE_*): 1 handled, 0 not an extension
+ * option, -1 error printed. */
 int pe_ext_option(pe_ext *e, int code, const char *arg);
 /* Consistency of the extension options with the command's (light, output); -1 error printed. */
 int pe_ext_check(const pe_ext *e, int have_kind, int mono, int have_out, int have_tilt);

@@ -1,5 +1,5 @@
 /* biref photoelastic: the extension options (nodes, maps, phase steps, key, scale bar), their
- * help and checks, and stress from finite-element node exports (docs/PHOTOELASTICITY.md). */
+ * checks, and stress from finite-element node exports (docs/PHOTOELASTICITY.md). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,31 +20,6 @@ void pe_ext_free(pe_ext *e)
 {
     biref_pe_mesh_destroy(e->mesh);
     e->mesh = NULL;
-}
-
-void pe_ext_help(void)
-{
-    printf("Stress from finite-element nodes (scattered; Delaunay triangulation, linear in each triangle):\n"
-           "  --stress-nodes FILE  node table with a header; other columns are ignored; comma, semicolon or\n"
-           "                       blank separated; repeated nodes are averaged\n"
-           "  --columns x=X,y=Y,sxx=S11,syy=S22,txy=S12   column names (default x, y, sxx, syy, txy)\n"
-           "  --length-unit mm|m   unit of the coordinates (default mm)\n"
-           "  --stress-unit MPa|Pa unit of the stresses (default MPa)\n"
-           "  --boundary FILE      outline polygons (x,y per line, blank line between polygons, even-odd:\n"
-           "                       an outline and its holes); outside it, or outside the triangulation,\n"
-           "                       there is no material (background in pictures, NaN in maps)\n\n"
-           "Data outputs (with -o FILE):\n"
-           "  --map M              fringe-order, isoclinic (deg, direction of s1), retardation (nm),\n"
-           "                       sigma1 or sigma2 (MPa) on the picture's pixel grid instead of a picture:\n"
-           "                       FILE.pfm (float, NaN = no material) or FILE.csv (x_mm,y_mm,value)\n"
-           "  --format png|pfm     the picture as 8-bit sRGB PNG (default) or float PFM (linear sRGB;\n"
-           "                       mono untinted: grey)\n"
-           "  --phase-steps 4|6    the images of a phase-stepped circular polariscope (six-step method of\n"
-           "                       Patterson & Wang; 4 = its first four), mono light: FILE-1.pfm ... or\n"
-           "                       FILE-1.png ... (16-bit linear grey); recover the maps with\n"
-           "                       'biref photoelastic demodulate'\n"
-           "  --key                add a fringe-order colour key (Michel-Levy chart) below the picture\n"
-           "  --scale-bar          add a length bar to the picture\n\n");
 }
 
 static int parse_columns(pe_ext *e, const char *arg)

@@ -8,6 +8,9 @@
 
 static const char WHY[] = "this biref was built without plots (BIREF_WITH_PLOTS=OFF: no cairo/PLplot)";
 
+/* No options: biref help --markdown then lists none for figure. */
+const cli_command_spec CLI_FIGURE = {"figure", "usage: biref figure (not in this build)\n", NULL, 0, NULL, 0, NULL, 0};
+
 int cmd_figure(int argc, char **argv)
 {
     (void)argc;

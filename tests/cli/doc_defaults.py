@@ -156,7 +156,9 @@ def main():
             out += helps[cmd].get(option, [])
         return out
 
-    docs = sorted(glob.glob(os.path.join(ROOT, "docs", "*.md"))) + [os.path.join(ROOT, "README.md")]
+    # docs/CLI.md's option tables are printed from the tables --help comes from (grammar.sh checks).
+    docs = sorted(p for p in glob.glob(os.path.join(ROOT, "docs", "*.md")) if not p.endswith("CLI.md"))
+    docs += [os.path.join(ROOT, "README.md")]
     quote = re.compile(r"`(--[A-Za-z][A-Za-z0-9-]*)[^`]*`([^`(]{0,80}?)\(default[: ]+([^)]*)\)")
     for path in docs:
         text = open(path, encoding="utf-8").read()

@@ -16,6 +16,67 @@ for cmd in "${cmds[@]}"; do
 done
 expect_ok "photoelastic demodulate --help" photoelastic demodulate --help
 
+# docs/CLI.md carries the option tables that `biref help --markdown` prints from the tables that
+# parse the options (not in a build without plots, whose figure has no options).
+docs=$(dirname "$0")/../../docs/CLI.md
+"$BIREF" help --markdown >"$tmpdir/options.md"
+if "$BIREF" figure --help >/dev/null 2>&1; then
+  sed -n '/^## Options of each command/,$p' "$docs" >"$tmpdir/docs_options.md"
+  if ! cmp -s "$tmpdir/options.md" "$tmpdir/docs_options.md"; then
+    echo "FAIL (docs/CLI.md): its option tables differ from 'biref help --markdown' (regenerate them):"
+    diff "$tmpdir/docs_options.md" "$tmpdir/options.md" | head -10
+    fails=$((fails + 1))
+  fi
+fi
+
+# Every option of every table (and every old spelling) is accepted by its command: given with a
+# value and followed by an unknown option, the error is about the unknown one (or about the
+# value), never "unknown option" for the option itself. Each --help lists the option.
+checked=0
+check_option() { # CMD... -- OPTION [VALUE]
+  local cmd=() opt val=()
+  while [ "$1" != -- ]; do cmd+=("$1"); shift; done
+  shift
+  opt=$1
+  [ $# -gt 1 ] && val=(1)
+  local err
+  err=$("$BIREF" "${cmd[@]}" "$opt" "${val[@]}" --no-such-option 2>&1 >/dev/null)
+  if [ $? -ne 2 ] || grep -qF -- "unknown option '$opt'" <<<"$err" || grep -qF -- "needs a value" <<<"$err"; then
+    echo "FAIL (${cmd[*]} $opt): not accepted: $err"
+    fails=$((fails + 1))
+  fi
+  checked=$((checked + 1))
+}
+cmd=()
+while IFS= read -r line; do
+  case $line in
+  "### biref "*)
+    read -r -a cmd <<<"${line#\#\#\# biref }"
+    "$BIREF" "${cmd[@]}" --help >"$tmpdir/help" || { echo "FAIL (${cmd[*]} --help)"; fails=$((fails + 1)); }
+    continue ;;
+  "| \`-h, --help\`"*) continue ;;
+  "| \`-"*) old=0 ;;                      # | `-o, --output FILE` | meaning |
+  "| "*" | \`-"*) old=1                   # | command | `--old VALUE` | `--new VALUE` |
+    text=${line#| }
+    read -r -a cmd <<<"${text%% |*}" ;;
+  *) continue ;;
+  esac
+  label=${line#*\`}
+  label=${label%%\`*}
+  label=${label//\\|/|}
+  read -r -a words <<<"$label"
+  if [[ ${words[0]} == -?, ]]; then # a short name too
+    check_option "${cmd[@]}" -- "${words[0]%,}" "${words[@]:2}"
+    words=("${words[@]:1}")
+  fi
+  if [ $old = 0 ] && ! grep -qF -- "${words[0]}" "$tmpdir/help"; then
+    echo "FAIL (${cmd[*]} --help does not list ${words[0]})"
+    fails=$((fails + 1))
+  fi
+  check_option "${cmd[@]}" -- "${words[@]}"
+done <"$tmpdir/options.md"
+[ "$checked" -gt 100 ] || { echo "FAIL: only $checked options checked"; fails=$((fails + 1)); }
+
 # Old spelling and new name: identical output.
 same() {
   local what=$1 old=$2 new=$3

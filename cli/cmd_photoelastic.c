@@ -161,7 +161,8 @@ static int write_png(const pe_args *a, pe_run *run, const pe_ext_ctx *ectx)
     if (!xyz || !rgb) {
         cli_error(CMD, "out of memory for a %d x %d picture", io->width, io->height);
         rc = CLI_EXIT_FAIL;
-    } else if (biref_pe_render(&run->setup, run->sp, &run->field, io, xyz, why, sizeof why) != BIREF_OK) {
+    } else if ((a->prefilter ? biref_pe_render_prefiltered : biref_pe_render)(&run->setup, run->sp, &run->field, io, xyz,
+                                                                             why, sizeof why) != BIREF_OK) {
         cli_error(CMD, "%s", why);
         rc = CLI_EXIT_FAIL;
     }
@@ -186,6 +187,7 @@ static int write_png(const pe_args *a, pe_run *run, const pe_ext_ctx *ectx)
         cJSON_AddNumberToObject(run->root, "width", io->width);
         cJSON_AddNumberToObject(run->root, "height", io->height);
         cJSON_AddNumberToObject(run->root, "supersample", io->supersample);
+        cJSON_AddStringToObject(run->root, "antialias", a->prefilter ? "prefilter" : "none");
         cJSON_AddNumberToObject(run->root, "ms", ms);
     } else if (!a->have_profile) {
         printf("wrote %s: %d x %d px, %d x %d samples per pixel, %.0f ms\n", a->out, io->width, io->height,

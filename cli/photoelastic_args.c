@@ -22,7 +22,8 @@ enum {
     OPT_EXPOSURE,
     OPT_PROFILE,
     OPT_WINDOW,
-    OPT_VIEW
+    OPT_VIEW,
+    OPT_ANTIALIAS
 };
 
 /* Geometry options and the presets they belong to (bit 1 << kind; grid and nodes have none). */
@@ -140,6 +141,11 @@ static int handle(void *args, int code, const char *arg)
     case OPT_WINDOW:
         a->have_view = 1;
         return cli_parse_window(CMD, "--window-mm", arg, a->view);
+    case OPT_ANTIALIAS:
+        if (strcmp(arg, "prefilter") && strcmp(arg, "none"))
+            return cli_error(CMD, "--antialias: expected prefilter or none, got '%s'", arg), -1;
+        a->prefilter = !strcmp(arg, "prefilter");
+        return 0;
     case OPT_VIEW:
         if (cli_parse_list(CMD, "--view-mm", arg, a->view, 4)) return -1;
         if (!(a->view[1] > a->view[0] && a->view[3] > a->view[2]))
@@ -210,6 +216,11 @@ static const cli_opt OPTS[] = {
                "the uniaxial approximation, exact only at 0 or where one principal\n"
                "stress vanishes (docs/PHOTOELASTICITY.md)"),
     CLI_INT("supersample", "K", F(supersample), 1, 8, "K x K samples per pixel (default 2)"),
+    CLI_CUSTOM("antialias", "A", OPT_ANTIALIAS,
+               "prefilter (default): each sample averages the fringes over its\n"
+               "footprint in retardation (no moire where fringes crowd, e.g. at the\n"
+               "loads); none: the fringes at the sample point (docs/ANTIALIASING.md).\n"
+               "Normal-view pictures only (not --tilt-deg, --map or --phase-steps)"),
     CLI_CUSTOM("exposure", "E", OPT_EXPOSURE, "multiply intensities by E (default 1)"),
     CLI_INT("threads", "T", F(threads), 0, 1024,
             "OpenMP threads (default: all cores); the picture does not depend on T"),
@@ -276,6 +287,7 @@ static void defaults(pe_args *a)
     for (int i = 0; i < PE_N_GEO; i++) a->geo[i] = NAN;
     a->size = 512;
     a->supersample = 2;
+    a->prefilter = 1;
     a->samples = 201;
     a->pk = BIREF_PE_CIRCULAR;
     a->ft = BIREF_PE_DARK;
@@ -303,6 +315,10 @@ static int check(pe_args *a, const cli_parsed *p, char **argv)
         return cli_error(CMD, "--lambda-nm needs --light mono (white-light fringe orders are quoted at %.0f nm)",
                          WHITE_FRINGE_LAMBDA_NM),
                -1;
+    if (cli_opts_given(&CLI_PHOTOELASTIC, p, "antialias") && (a->ext.map >= 0 || a->ext.phase_steps || a->tilt_deg > 0))
+        return cli_error(CMD, "--antialias applies to normal-view pictures, not to --tilt-deg, --map or --phase-steps"),
+               -1;
+    if (a->tilt_deg > 0) a->prefilter = 0; /* the tilted view samples the general slab path at points */
     if (cli_opts_given(&CLI_PHOTOELASTIC, p, "profile-points") && !a->have_profile)
         return cli_error(CMD, "--profile-points needs --profile"), -1;
     return 0;

@@ -15,6 +15,7 @@ typedef struct {
     int kind; /* biref_pe_field_kind, or -1 before parsing */
     const char *grid_path, *out, *material_name;
     int json, tint, have_profile, have_view, have_lambda;
+    int prefilter; /* 1: fringes averaged over each sample's footprint (--antialias prefilter) */
     double thickness_mm, n0, c_brew; /* NAN: not given */
     double eta_i, polarizer_deg, lambda, exposure, tilt_deg;
     double geo[PE_N_GEO]; /* NAN: not given */

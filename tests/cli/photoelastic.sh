@@ -101,6 +101,19 @@ expect_error "negative load" photoelastic --preset disk --load-N -5 -o "$tmpdir/
 expect_error "lambda with white" photoelastic --preset disk --lambda-nm 589 -o "$tmpdir/x.png"
 expect_error "tint with white" photoelastic --preset disk --tint -o "$tmpdir/x.png"
 expect_error "tint in the infrared" photoelastic --preset disk --light mono --lambda-nm 900 --tint -o "$tmpdir/x.png"
+# Anti-aliasing: pictures are prefiltered by default (a normal view), --antialias none samples the
+# fringes at points and gives a different picture; the option is refused where it does not apply.
+expect_ok "prefiltered by default" photoelastic --preset disk --size 64 -o "$tmpdir/aa_default.png" --json
+expect_grep "default reported" '"antialias":[[:space:]]*"prefilter"'
+expect_ok "explicit prefilter" photoelastic --preset disk --size 64 --antialias prefilter -o "$tmpdir/aa_pre.png"
+expect_ok "point sampling" photoelastic --preset disk --size 64 --antialias none -o "$tmpdir/aa_none.png" --json
+expect_grep "none reported" '"antialias":[[:space:]]*"none"'
+cmp -s "$tmpdir/aa_default.png" "$tmpdir/aa_pre.png" || { echo "FAIL (default is not the prefilter)"; fails=$((fails + 1)); }
+cmp -s "$tmpdir/aa_pre.png" "$tmpdir/aa_none.png" && { echo "FAIL (--antialias none changes nothing)"; fails=$((fails + 1)); }
+expect_error "bad antialias" photoelastic --preset disk --antialias box -o "$tmpdir/x.png"
+expect_error "antialias with a map" photoelastic --preset disk --antialias none --map fringe-order -o "$tmpdir/x.pfm"
+expect_error "antialias with a tilt" photoelastic --preset disk --antialias prefilter --tilt-deg 20 -o "$tmpdir/x.png"
+
 expect_error "bad polariscope" photoelastic --preset disk --polariscope elliptic -o "$tmpdir/x.png"
 expect_error "bad field" photoelastic --preset disk --field grey -o "$tmpdir/x.png"
 expect_error "bad light" photoelastic --preset disk --light laser -o "$tmpdir/x.png"

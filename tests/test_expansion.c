@@ -82,7 +82,7 @@ static void thin_slabs_match_ground_truth(void)
                 worst = fmax(worst, fmax(a, b));
             }
     }
-    /* Measured: 0.093 (tolerance 1e-3, seed 31337). */
+    /* Measured: 0.068 (tolerance 1e-3, seed 31337; 0.093 before the energy balance). */
     printf("expansion vs ground truth (thin slabs, 0-85 deg): worst dE00 %.4f\n", worst);
     CHECK(worst <= 0.1);
 }

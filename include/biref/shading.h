@@ -19,9 +19,13 @@
 extern "C" {
 #endif
 
-/* A slab at a surface hit, in world coordinates. */
+/* A slab at a surface hit, in world coordinates. The normal may face either side of the surface,
+ * but the local frame is right-handed (z = x cross y), so flipping the normal also flips local z:
+ * the same local optic axis then describes the plate turned over about its tangent. Under s/p
+ * light (relative to each ray's plane of incidence) that changes nothing; under world-fixed
+ * polarizers it is a different plate. Give the normal the orientation the axis was written for. */
 typedef struct {
-    double normal[3];  /* surface normal (local +y), either orientation; normalised by biref */
+    double normal[3];  /* surface normal (local +y), normalised by biref; see above on its orientation */
     double tangent[3]; /* local +x; orthogonalised against the normal by biref */
     double axis[3];    /* optic axis in the local frame: x = tangent, y = normal, z = x cross y */
     double eta_o, eta_e;

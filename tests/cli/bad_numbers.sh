@@ -60,10 +60,10 @@ printf '%s\n-1e308,0,1,0,0\n1e308,0,1,0,0\n-1e308,1,1,0,0\n1e308,1,1,0,0\n' "$h"
 expect_error "grid x 1e308" photoelastic --stress-grid "$tmpdir/g2.csv" -o "$tmpdir/g2.png" --size 20
 named "grid x line" 'line 2, column x_mm: -1e308 is out of range'
 
-# Images: a 461-byte PNG declaring 16384 x 16384 pixels is refused before any decoding.
+# Images: a 461-byte PNG declaring 16384 x 16384 pixels is refused before any decoding. The
+# reader writes this message only from the header check that precedes every allocation, so the
+# message itself shows where the refusal happened (no wall-clock test: timing is for benchmarks).
 huge=$root/tests/fuzz/corpus/fuzz_png/huge_declared.png
-start=$(date +%s)
 expect_error "diff on a forged size" diff "$huge" "$huge"
 named "forged size" 'too large \(16384x16384'
-[ $(($(date +%s) - start)) -le 2 ] || { echo "FAIL (forged size not refused fast)"; fails=$((fails + 1)); }
 finish

@@ -492,9 +492,12 @@ def photoelastic(preset="disk", stress_grid=None, thickness_mm=None, radius_mm=N
                  width_mm=60.0, height_mm=None, tension_deg=0.0, length_mm=100.0, depth_mm=20.0, moment_Nmm=2000.0,
                  material="polycarbonate", n0=None, C_brewster=None, eta_i=1.0, polariscope="circular",
                  field="dark", polarizer_deg=0.0, light="white", lambda_nm=589.0, size=512, supersample=2,
-                 tilt_deg=0.0, exposure=1.0, threads=0, space="linear_srgb"):
+                 tilt_deg=0.0, exposure=1.0, threads=0, space="linear_srgb", antialias="prefilter"):
     """A stressed plate in a polariscope, like ``biref photoelastic -o``: a numpy float array of
     shape (height, width, 3) whose longer side has ``size`` pixels.
+
+    antialias "prefilter" (default; a normal view averages each sample's fringes over its
+    footprint) or "none" (the fringes at the sample points), as ``--antialias``.
 
     preset "disk" (radius_mm 25, load_N), "hole" (radius_mm 5, width_mm, height_mm, stress_MPa,
     tension_deg) or "beam" (length_mm, depth_mm, moment_Nmm); or stress_grid, a CSV file with
@@ -502,6 +505,8 @@ def photoelastic(preset="disk", stress_grid=None, thickness_mm=None, radius_mm=N
     """
     if space not in _SPACES:
         raise ValueError(f"space: expected one of {', '.join(_SPACES)}, got {space!r}")
+    if antialias not in ("prefilter", "none"):
+        raise ValueError(f"antialias: expected prefilter or none, got {antialias!r}")
     setup = _ffi.new("biref_pe_setup *")
     if _lib.biref_pe_material_preset(str(material).encode(), _ffi.addressof(setup, "material")) != _lib.BIREF_OK:
         names = [_ffi.string(_lib.biref_pe_material_at(i).name).decode() for i in range(_lib.biref_pe_material_count())]
@@ -578,7 +583,8 @@ def photoelastic(preset="disk", stress_grid=None, thickness_mm=None, radius_mm=N
         sp = _ffi.gc(spp[0], _lib.biref_spectral_destroy)
     n = io.width * io.height
     xyz = _ffi.new("float[]", n * 3)
-    _call("photoelastic render", _lib.biref_pe_render, setup, sp, fld, io, xyz)
+    render = _lib.biref_pe_render_prefiltered if antialias == "prefilter" else _lib.biref_pe_render
+    _call("photoelastic render", render, setup, sp, fld, io, xyz)
     img = _convert(xyz, n, "xyz")
     if light == "white" and exposure != 1.0:
         img = img * exposure

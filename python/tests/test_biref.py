@@ -181,6 +181,18 @@ def test_photoelastic_matches_cli(tmp_path):
     enc = biref.photoelastic(preset="disk", size=64, supersample=1, space="srgb")
     mine = np.clip(np.round(np.clip(enc, 0, 1) * 255), 0, 255).astype(int)
     assert np.abs(mine - png).max() <= 1
+    # The point-sampled picture is the CLI's --antialias none, and differs from the prefiltered one.
+    out_none = tmp_path / "disk_none.png"
+    cli_json("photoelastic", "--preset", "disk", "--size", "64", "--supersample", "1", "--antialias", "none",
+             "-o", str(out_none))
+    assert lib.biref_png_read_rgb8(str(out_none).encode(), pw, ph, rgb, msg, 256) == lib.BIREF_OK
+    png_none = np.frombuffer(ffi.buffer(rgb[0], w * h * 3), dtype=np.uint8).reshape(h, w, 3).astype(int)
+    enc_none = biref.photoelastic(preset="disk", size=64, supersample=1, space="srgb", antialias="none")
+    mine_none = np.clip(np.round(np.clip(enc_none, 0, 1) * 255), 0, 255).astype(int)
+    assert np.abs(mine_none - png_none).max() <= 1
+    assert np.abs(mine_none - mine).max() > 1
+    with pytest.raises(ValueError):
+        biref.photoelastic(preset="disk", size=8, antialias="box")
     # Dark-field circular polariscope: no light around the disk; fringes inside.
     assert img[0, 0].max() < 1e-6
     assert img[h // 2, w // 2].max() > 0.05

@@ -125,7 +125,10 @@ static int prepare(pe_args *a, pe_run *run)
     setup->lambda_nm = a->lambda;
     biref_pe_polariscope_make(a->pk, a->ft, a->polarizer_deg * M_PI / 180.0, &setup->pol);
     biref_pe_image_opts *io = &run->io;
-    *io = (biref_pe_image_opts){0, 0, (int)a->supersample, (int)a->threads, {1, 1, 1}, a->tilt_deg * M_PI / 180.0};
+    *io = (biref_pe_image_opts){.supersample = (int)a->supersample,
+                                .threads = (int)a->threads,
+                                .tint = {1, 1, 1},
+                                .tilt = a->tilt_deg * M_PI / 180.0};
     if (a->tint && mono_tint(a->lambda, io->tint))
         return cli_error(CMD, "--tint: %g nm has no visible colour (380-780 nm)", a->lambda), CLI_EXIT_USAGE;
     for (int i = 0; i < 3; i++) {
@@ -161,10 +164,18 @@ static int write_png(const pe_args *a, pe_run *run, const pe_ext_ctx *ectx)
     if (!xyz || !rgb) {
         cli_error(CMD, "out of memory for a %d x %d picture", io->width, io->height);
         rc = CLI_EXIT_FAIL;
-    } else if ((a->prefilter ? biref_pe_render_prefiltered : biref_pe_render)(&run->setup, run->sp, &run->field, io, xyz,
-                                                                             why, sizeof why) != BIREF_OK) {
-        cli_error(CMD, "%s", why);
-        rc = CLI_EXIT_FAIL;
+    } else {
+        biref_progress_bar bar;
+        biref_progress_bar_init(&bar, stderr, 1, "photoelastic");
+        biref_pe_image_opts with_bar = *io;
+        with_bar.progress = biref_progress_bar_update;
+        with_bar.progress_user = &bar;
+        if ((a->prefilter ? biref_pe_render_prefiltered : biref_pe_render)(&run->setup, run->sp, &run->field, &with_bar,
+                                                                          xyz, why, sizeof why) != BIREF_OK) {
+            cli_error(CMD, "%s", why);
+            rc = CLI_EXIT_FAIL;
+        }
+        biref_progress_bar_finish(&bar);
     }
     double ms = 1e3 * (biref_wall_seconds() - t0);
     if (!rc && a->light == BIREF_PE_WHITE && a->exposure != 1.0)

@@ -99,7 +99,7 @@ static double render_pe(biref_pe_light_kind light, biref_antialias aa, int K, in
     const double pitch = div * (f.frame[1] - f.frame[0]) / 512.0, top = 25e-3 - 1e-3;
     f.frame[0] = -0.5 * W * pitch, f.frame[1] = 0.5 * W * pitch;
     f.frame[2] = top - H * pitch, f.frame[3] = top;
-    biref_pe_image_opts io = {W, H, K, threads, {1, 1, 1}, 0.0};
+    biref_pe_image_opts io = {.width = W, .height = H, .supersample = K, .threads = threads, .tint = {1, 1, 1}, .tilt = 0.0};
     fprintf(stderr, "biref figure: aliasing: photoelastic %dx%d, %dx%d samples\n", W, H, K, K);
     double t0 = biref_wall_seconds();
     biref_status st = aa == BIREF_ANTIALIAS_PREFILTER ? biref_pe_render_prefiltered(&s, sp, &f, &io, xyz, msg, sizeof msg)

@@ -272,7 +272,7 @@ const cli_command_spec CLI_PHOTOELASTIC = {
     "  biref photoelastic --stress-nodes part.csv --columns sxx=S11,syy=S22,txy=S12 --map fringe-order -o N.pfm\n",
     0,
     handle,
-    0,
+    1,
 };
 
 static void defaults(pe_args *a)

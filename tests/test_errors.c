@@ -104,7 +104,7 @@ static void test_photoelastic_render(void)
     biref_pe_polariscope_make(BIREF_PE_CIRCULAR, BIREF_PE_DARK, 0.0, &s.pol);
     biref_pe_field f;
     CHECK(biref_pe_field_disk(&f, 0.025, 6e-3, 500, msg, sizeof msg) == BIREF_OK);
-    biref_pe_image_opts o = {4, 4, 1, 1, {1, 1, 1}, 0.0};
+    biref_pe_image_opts o = {.width = 4, .height = 4, .supersample = 1, .threads = 1, .tint = {1, 1, 1}, .tilt = 0.0};
     float img[4 * 4 * 3], map[4 * 4];
     o.supersample = BIREF_PE_MAX_SUPERSAMPLE + 1;
     CHECK(biref_pe_render(&s, NULL, &f, &o, img, msg, sizeof msg) == BIREF_ERR_INVALID);

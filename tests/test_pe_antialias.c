@@ -86,7 +86,7 @@ static float *disk_picture(const biref_pe_setup *s, int W, double scale, int K, 
     const double pitch = scale * (f.frame[1] - f.frame[0]) / 512.0, top = 24e-3;
     f.frame[0] = -0.5 * W * pitch, f.frame[1] = 0.5 * W * pitch;
     f.frame[2] = top - W * pitch, f.frame[3] = top;
-    biref_pe_image_opts io = {W, W, K, 0, {1, 1, 1}, tilt};
+    biref_pe_image_opts io = {.width = W, .height = W, .supersample = K, .threads = 0, .tint = {1, 1, 1}, .tilt = tilt};
     float *xyz = malloc((size_t)W * W * 3 * sizeof *xyz);
     if (!xyz) return NULL;
     biref_status st = prefilter ? biref_pe_render_prefiltered(s, sp, &f, &io, xyz, NULL, 0) : biref_pe_render(s, sp, &f, &io, xyz, NULL, 0);

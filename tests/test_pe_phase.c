@@ -114,7 +114,7 @@ static void round_trip(int n, double ib, double ia, double *worst_N, double *wor
     s.eta_i = 1.0;
     s.light = BIREF_PE_MONO;
     s.lambda_nm = 589;
-    biref_pe_image_opts io = {W, H, 2, 1, {1, 1, 1}, 0};
+    biref_pe_image_opts io = {.width = W, .height = H, .supersample = 2, .threads = 1, .tint = {1, 1, 1}, .tilt = 0};
     biref_pe_step st[6];
     biref_pe_phase_steps(n, st);
     float *img[6], *xyz = malloc((size_t)W * H * 3 * sizeof *xyz);

@@ -551,7 +551,7 @@ static void disk_fringes_on_the_diameter_at_closed_form_orders(void)
     const double R = 25 * MM, P = 500;
     CHECK(biref_pe_field_disk(&f, R, s.thickness, P, msg, sizeof msg) == BIREF_OK);
     const int H = 1024;
-    biref_pe_image_opts o = {1, H, 1, 0, {1, 1, 1}, 0};
+    biref_pe_image_opts o = {.width = 1, .height = H, .supersample = 1, .threads = 0, .tint = {1, 1, 1}, .tilt = 0};
     float *img = malloc(sizeof(float) * 3 * H);
     CHECK(biref_pe_render(&s, NULL, &f, &o, img, NULL, 0) == BIREF_OK);
     const double Cc = s.material.C_per_Pa, lam = 589e-9;
@@ -594,7 +594,7 @@ static void isoclinics(biref_pe_light_kind light)
     char msg[128];
     CHECK(biref_pe_field_disk(&f, 25 * MM, s.thickness, 500, msg, sizeof msg) == BIREF_OK);
     const int W = 96;
-    biref_pe_image_opts o = {W, W, 1, 2, {1, 1, 1}, 0};
+    biref_pe_image_opts o = {.width = W, .height = W, .supersample = 1, .threads = 2, .tint = {1, 1, 1}, .tilt = 0};
     float *img = malloc(sizeof(float) * 3 * W * W);
     CHECK(biref_pe_render(&s, sp, &f, &o, img, NULL, 0) == BIREF_OK);
     double worst = 0, dark = 0;
@@ -723,7 +723,7 @@ static void render_is_thread_independent_and_hole_shows_background(void)
     CHECK(biref_pe_field_hole(&f, 5 * MM, 60 * MM, 40 * MM, s.thickness, 4 * MPA, 0, msg, sizeof msg) == BIREF_OK);
     const int W = 90, H = 60;
     float *a = malloc(sizeof(float) * 3 * W * H), *b = malloc(sizeof(float) * 3 * W * H);
-    biref_pe_image_opts o = {W, H, 2, 1, {1, 1, 1}, 0};
+    biref_pe_image_opts o = {.width = W, .height = H, .supersample = 2, .threads = 1, .tint = {1, 1, 1}, .tilt = 0};
     CHECK(biref_pe_render(&s, sp, &f, &o, a, NULL, 0) == BIREF_OK);
     o.threads = 2;
     CHECK(biref_pe_render(&s, sp, &f, &o, b, NULL, 0) == BIREF_OK);

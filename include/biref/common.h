@@ -68,6 +68,10 @@ typedef enum {
 
 BIREF_API const char *biref_status_string(biref_status s);
 
+/* Progress of a long call (a rendered picture): called after each finished row, from inside the
+ * parallel loop but serialised (never concurrently); rows_done counts the rows finished so far. */
+typedef void (*biref_progress_fn)(void *user, int rows_done, int rows_total);
+
 #ifdef __cplusplus
 }
 #endif

@@ -259,6 +259,8 @@ typedef struct {
     int threads;        /* OpenMP threads, 0 = default */
     double tint[3];     /* mono only: XYZ the intensity multiplies (white E = (1,1,1)) */
     double tilt;        /* 0: normal view (fast path); else biref_pe_shade_oblique at this angle (rad) */
+    biref_progress_fn progress; /* NULL = none; called after each finished row */
+    void *progress_user;
 } biref_pe_image_opts;
 
 #define BIREF_PE_MAX_SUPERSAMPLE 64

@@ -139,9 +139,6 @@ BIREF_API biref_status biref_renderer_create(const biref_scene *scene, const bir
                                              biref_renderer **out, char *msg, size_t msg_len);
 BIREF_API void biref_renderer_destroy(biref_renderer *r);
 
-/* Called after each finished row, from inside the parallel loop but serialised
- * (never concurrently); rows_done counts the rows finished so far. */
-typedef void (*biref_progress_fn)(void *user, int rows_done, int rows_total);
 
 typedef struct {
     long pixels;         /* pixels shaded */

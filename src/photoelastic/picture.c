@@ -67,6 +67,7 @@ static biref_status render(const biref_pe_setup *s, const biref_spectral *sp, co
 
     /* Every pixel is a pure function of its position, so the picture does not depend on the
      * thread count or the schedule. */
+    int rows_done = 0;
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
     for (int j = 0; j < H; j++) {
         for (int i = 0; i < W; i++) {
@@ -95,6 +96,10 @@ static biref_status render(const biref_pe_setup *s, const biref_spectral *sp, co
                 }
             float *px = xyz + 3 * ((size_t)j * W + i);
             for (int m = 0; m < 3; m++) px[m] = (float)(acc[m] * inv * tint[m]);
+        }
+        if (opt->progress) {
+#pragma omp critical(biref_pe_progress)
+            opt->progress(opt->progress_user, ++rows_done, H);
         }
     }
     biref_phase_prefilter_destroy(pf);

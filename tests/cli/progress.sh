@@ -57,6 +57,9 @@ check_stderr "-q then --progress" lines "${short[@]}" -q --progress
 acc=(accuracy --theta-max-deg 40 --theta-step-deg 20 --azimuths 2 --reference-samples 256 --json)
 check_stderr "accuracy --progress" lines "${acc[@]}" --progress
 check_stderr "accuracy --progress --quiet" empty "${acc[@]}" --progress --quiet
+pe=(photoelastic --preset disk --size 32 -o "$tmpdir/pe.png")
+check_stderr "photoelastic --progress" lines "${pe[@]}" --progress
+check_stderr "photoelastic --progress --quiet" empty "${pe[@]}" --progress --quiet
 bench=(bench --scene "$scene" --width 16 --height 16 --methods analytic,numeric-8 --max-seconds 0.05 --json)
 check_stderr "bench --progress" lines "${bench[@]}" --progress
 

@@ -81,56 +81,56 @@ typedef struct {
 } spectrum_result;
 
 /* One option of the command. Returns 0, or -1 after one error line. */
-static int handle(void *args, int c, const char *optarg)
+static int handle(void *args, int c, const char *arg)
 {
     spectrum_args *a = args;
-    int r = cli_slab_opts_handle(CMD, &a->so, c, optarg);
+    int r = cli_slab_opts_handle(CMD, &a->so, c, arg);
     if (r) return r < 0 ? -1 : 0;
     switch (c) {
     case OPT_METHOD:
-        if (biref_method_from_name(optarg, &a->method) != BIREF_OK)
-            return cli_error(CMD, "--method: expected analytic, numeric, ground-truth or expansion, got '%s'", optarg),
+        if (biref_method_from_name(arg, &a->method) != BIREF_OK)
+            return cli_error(CMD, "--method: expected analytic, numeric, ground-truth or expansion, got '%s'", arg),
                    -1;
         return 0;
     case OPT_CMF:
-        if (biref_cmf_kind_from_name(optarg, &a->cfg.cmf) != BIREF_OK)
-            return cli_error(CMD, "--cmf: expected cie1931 or wyman2013, got '%s'", optarg), -1;
+        if (biref_cmf_kind_from_name(arg, &a->cfg.cmf) != BIREF_OK)
+            return cli_error(CMD, "--cmf: expected cie1931 or wyman2013, got '%s'", arg), -1;
         return 0;
     case OPT_RANGE: {
         double r2[2];
-        if (cli_parse_range_nm(CMD, "--range-nm", optarg, r2)) return -1;
+        if (cli_parse_range_nm(CMD, "--range-nm", arg, r2)) return -1;
         a->cfg.lambda_min_nm = r2[0];
         a->cfg.lambda_max_nm = r2[1];
         return 0;
     }
-    case OPT_POL: return cli_parse_polarization(CMD, "--polarization", optarg, a->light.w_in) ? -1 : 0;
+    case OPT_POL: return cli_parse_polarization(CMD, "--polarization", arg, a->light.w_in) ? -1 : 0;
     case OPT_ANALYZER: {
-        int g = cli_parse_general_analyzer(CMD, "--analyzer", optarg, a->P_an);
+        int g = cli_parse_general_analyzer(CMD, "--analyzer", arg, a->P_an);
         if (g < 0) return -1;
         if (g > 0) {
             a->general_an = 1;
-            snprintf(a->an_text, sizeof a->an_text, "%s", optarg);
-        } else if (cli_parse_analyzer(CMD, "--analyzer", optarg, a->light.mask)) {
+            snprintf(a->an_text, sizeof a->an_text, "%s", arg);
+        } else if (cli_parse_analyzer(CMD, "--analyzer", arg, a->light.mask)) {
             return -1;
         }
         return 0;
     }
     case OPT_POLARIZER:
-        if (cli_parse_polarizer_state(CMD, "--polarizer", optarg, a->stokes)) return -1;
+        if (cli_parse_polarizer_state(CMD, "--polarizer", arg, a->stokes)) return -1;
         a->general_in = 1;
-        snprintf(a->pol_text, sizeof a->pol_text, "%s", optarg);
+        snprintf(a->pol_text, sizeof a->pol_text, "%s", arg);
         return 0;
     case OPT_STOKES:
-        if (cli_parse_stokes(CMD, "--stokes", optarg, a->stokes)) return -1;
+        if (cli_parse_stokes(CMD, "--stokes", arg, a->stokes)) return -1;
         a->general_in = 1;
-        snprintf(a->pol_text, sizeof a->pol_text, "stokes:%s", optarg);
+        snprintf(a->pol_text, sizeof a->pol_text, "stokes:%s", arg);
         return 0;
     case OPT_ORDER:
-        if (cli_parse_expansion_order(CMD, optarg, &a->eopts)) return -1;
+        if (cli_parse_expansion_order(CMD, arg, &a->eopts)) return -1;
         a->have_order = 1;
         return 0;
     case OPT_TOLERANCE:
-        if (cli_parse_expansion_tolerance(CMD, optarg, &a->eopts)) return -1;
+        if (cli_parse_expansion_tolerance(CMD, arg, &a->eopts)) return -1;
         a->have_tol = 1;
         return 0;
     default: return -1;

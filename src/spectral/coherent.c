@@ -45,8 +45,6 @@
 #define SAMPLES_PER_PERIOD 4.0
 #define MIN_SAMPLES 48.0
 
-static inline double abs2(double complex z) { return creal(z) * creal(z) + cimag(z) * cimag(z); }
-
 /* Largest row sum of |D| (D = P_down r12 P_up r10, the round trip of eq. 15) with each leg's
  * decay taken at wavenumber k: a bound on the amplitude factor of one more round trip. */
 static double round_trip_norm(const biref_slab_state *st, double k)

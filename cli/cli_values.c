@@ -30,3 +30,13 @@ int cli_parse_window(const char *cmd, const char *opt, const char *text, double 
     frame[3] = fmax(c[1], c[3]);
     return 0;
 }
+
+int cli_parse_antialias(const char *cmd, const char *text, int *prefilter)
+{
+    if (strcmp(text, "prefilter") && strcmp(text, "none")) {
+        cli_error(cmd, "--antialias: expected prefilter or none, got '%s'", text);
+        return -1;
+    }
+    *prefilter = !strcmp(text, "prefilter");
+    return 0;
+}

@@ -11,6 +11,7 @@
 #include "cli_opts.h"
 #include "cli_polarizer.h"
 #include "cli_render.h"
+#include "cli_values.h"
 #include "commands.h"
 #include "json_out.h"
 
@@ -40,14 +41,12 @@ static int handle(void *args, int code, const char *arg)
     case OPT_BACKEND: return cli_parse_backend(CMD, arg, &a->gl);
     case OPT_ORDER: return cli_parse_expansion_order(CMD, arg, &a->opt.expansion);
     case OPT_TOLERANCE: return cli_parse_expansion_tolerance(CMD, arg, &a->opt.expansion);
-    case OPT_ANTIALIAS:
-        if (!strcmp(arg, "prefilter"))
-            a->antialias = BIREF_ANTIALIAS_PREFILTER;
-        else if (!strcmp(arg, "none"))
-            a->antialias = BIREF_ANTIALIAS_NONE;
-        else
-            return cli_error(CMD, "--antialias: expected prefilter or none, got '%s'", arg), -1;
+    case OPT_ANTIALIAS: {
+        int prefilter;
+        if (cli_parse_antialias(CMD, arg, &prefilter)) return -1;
+        a->antialias = prefilter ? BIREF_ANTIALIAS_PREFILTER : BIREF_ANTIALIAS_NONE;
         return 0;
+    }
     default: return -1;
     }
 }

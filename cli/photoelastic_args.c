@@ -141,11 +141,7 @@ static int handle(void *args, int code, const char *arg)
     case OPT_WINDOW:
         a->have_view = 1;
         return cli_parse_window(CMD, "--window-mm", arg, a->view);
-    case OPT_ANTIALIAS:
-        if (strcmp(arg, "prefilter") && strcmp(arg, "none"))
-            return cli_error(CMD, "--antialias: expected prefilter or none, got '%s'", arg), -1;
-        a->prefilter = !strcmp(arg, "prefilter");
-        return 0;
+    case OPT_ANTIALIAS: return cli_parse_antialias(CMD, arg, &a->prefilter);
     case OPT_VIEW:
         if (cli_parse_list(CMD, "--view-mm", arg, a->view, 4)) return -1;
         if (!(a->view[1] > a->view[0] && a->view[3] > a->view[2]))

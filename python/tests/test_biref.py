@@ -169,26 +169,29 @@ def test_photoelastic_matches_cli(tmp_path):
     img = biref.photoelastic(preset="disk", size=64, supersample=1)
     h, w, _ = img.shape
     assert max(h, w) == 64 and np.all(np.isfinite(img))
-    out = tmp_path / "disk.png"
-    info = cli_json("photoelastic", "--preset", "disk", "--size", "64", "--supersample", "1", "-o", str(out))
-    assert [info["width"], info["height"]] == [w, h]
-    # The CLI's 8-bit PNG, read back through the library, is our image encoded and rounded.
     from biref._native import ffi, lib
-    pw, ph, rgb = ffi.new("int *"), ffi.new("int *"), ffi.new("unsigned char **")
-    msg = ffi.new("char[]", 256)
-    assert lib.biref_png_read_rgb8(str(out).encode(), pw, ph, rgb, msg, 256) == lib.BIREF_OK
-    png = np.frombuffer(ffi.buffer(rgb[0], w * h * 3), dtype=np.uint8).reshape(h, w, 3).astype(int)
-    enc = biref.photoelastic(preset="disk", size=64, supersample=1, space="srgb")
-    mine = np.clip(np.round(np.clip(enc, 0, 1) * 255), 0, 255).astype(int)
+
+    def cli_and_mine(antialias=None):
+        """The CLI's 8-bit PNG read back through the library, and ours encoded and rounded; both
+        with their defaults when antialias is None."""
+        out = tmp_path / f"disk_{antialias}.png"
+        extra = ["--antialias", antialias] if antialias else []
+        info = cli_json("photoelastic", "--preset", "disk", "--size", "64", "--supersample", "1", *extra,
+                        "-o", str(out))
+        assert [info["width"], info["height"]] == [w, h]
+        pw, ph, rgb = ffi.new("int *"), ffi.new("int *"), ffi.new("unsigned char **")
+        msg = ffi.new("char[]", 256)
+        assert lib.biref_png_read_rgb8(str(out).encode(), pw, ph, rgb, msg, 256) == lib.BIREF_OK
+        png = np.frombuffer(ffi.buffer(rgb[0], w * h * 3), dtype=np.uint8).reshape(h, w, 3).astype(int)
+        opts = {"antialias": antialias} if antialias else {}
+        enc = biref.photoelastic(preset="disk", size=64, supersample=1, space="srgb", **opts)
+        return png, np.clip(np.round(np.clip(enc, 0, 1) * 255), 0, 255).astype(int)
+
+    # The default (prefiltered) picture and the point-sampled one (--antialias none) each match
+    # the CLI's, and they differ from each other.
+    png, mine = cli_and_mine()
     assert np.abs(mine - png).max() <= 1
-    # The point-sampled picture is the CLI's --antialias none, and differs from the prefiltered one.
-    out_none = tmp_path / "disk_none.png"
-    cli_json("photoelastic", "--preset", "disk", "--size", "64", "--supersample", "1", "--antialias", "none",
-             "-o", str(out_none))
-    assert lib.biref_png_read_rgb8(str(out_none).encode(), pw, ph, rgb, msg, 256) == lib.BIREF_OK
-    png_none = np.frombuffer(ffi.buffer(rgb[0], w * h * 3), dtype=np.uint8).reshape(h, w, 3).astype(int)
-    enc_none = biref.photoelastic(preset="disk", size=64, supersample=1, space="srgb", antialias="none")
-    mine_none = np.clip(np.round(np.clip(enc_none, 0, 1) * 255), 0, 255).astype(int)
+    png_none, mine_none = cli_and_mine("none")
     assert np.abs(mine_none - png_none).max() <= 1
     assert np.abs(mine_none - mine).max() > 1
     with pytest.raises(ValueError):

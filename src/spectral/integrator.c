@@ -310,6 +310,21 @@ static biref_status scalar_slab_hit(const biref_integrator *it, const biref_slab
     return s != BIREF_OK ? s : scalar_hit(it, &st, light, T, R);
 }
 
+void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_hit *hits, size_t n,
+                                 const biref_light *light, double (*T)[3], double (*R)[3], unsigned char *scalar)
+{
+    if (it->hits && light->sp_model)
+        it->hits(it->sp, light->w_in, light->mask, hits, n, T, R, scalar);
+    else
+        memset(scalar, 1, n);
+}
+
+biref_status biref_integrate_hit(const biref_integrator *it, const biref_slab_hit *hit, const biref_light *light,
+                                 double T[3], double R[3])
+{
+    return scalar_slab_hit(it, hit, light, T, R);
+}
+
 void biref_integrate_hits(const biref_integrator *it, const biref_slab_hit *hits, size_t n, const biref_light *light,
                           double (*T)[3], double (*R)[3], biref_status *status)
 {

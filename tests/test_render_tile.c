@@ -13,6 +13,7 @@
 #include "biref/biref.h"
 #include "render/render_internal.h"
 #include "render/render_tile.h"
+#include "spectral/analytic_packet.h"
 #include "spectral/integrator_internal.h"
 #include "test_cases.h"
 #include "test_render_util.h"
@@ -145,12 +146,41 @@ static void test_tiles_near_pixels_kernel(void)
     }
 }
 
+/* The tiles compiled for each instruction set give the same bits (no contracted multiply-adds):
+ * the same renderer, only its tiles' instruction set changed. */
+static void test_tile_isas_identical(void)
+{
+    const int W = quick ? 37 : 45, H = quick ? 9 : 24;
+    const size_t n = (size_t)W * H * 3;
+    for (size_t i = 0; i < N_SCENES; i++) {
+        if (quick && i > 0 && SCENES[i]) continue;
+        biref_renderer *r = make(SCENES[i], "baseline", W, H);
+        if (!r) continue;
+        float *ref = malloc(n * sizeof *ref), *a = malloc(n * sizeof *a);
+        r->tile_isa = BIREF_SIMD_BASELINE;
+        CHECK(biref_render_image(r, ref, NULL, NULL, NULL) == BIREF_OK);
+        for (int isa = BIREF_SIMD_AVX2; isa < BIREF_SIMD_COUNT; isa++) {
+            if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
+            r->tile_isa = isa;
+            CHECK(biref_render_image(r, a, NULL, NULL, NULL) == BIREF_OK);
+            const int same = memcmp(a, ref, n * sizeof *a) == 0;
+            printf("%s: %s tiles %s the baseline's\n", SCENES[i] ? SCENES[i] : "mixed scene",
+                   biref_simd_isa_name((biref_simd_isa)isa), same ? "equal" : "DIFFER FROM");
+            CHECK(same);
+        }
+        free(ref);
+        free(a);
+        biref_renderer_destroy(r);
+    }
+}
+
 int main(int argc, char **argv)
 {
     quick = getenv("BIREF_TEST_QUICK") != NULL;
     static const test_case cases[] = {
         {"tiles_equal_pixels_scalar", test_tiles_equal_pixels_scalar},
         {"tiles_near_pixels_kernel", test_tiles_near_pixels_kernel},
+        {"tile_isas_identical", test_tile_isas_identical},
     };
     return test_run_cases("test_render_tile", cases, TEST_COUNT(cases), argc, argv);
 }

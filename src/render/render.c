@@ -197,6 +197,7 @@ static void store_pixel(const biref_renderer *r, const double c[3], float *px, l
 
 typedef struct {
     biref_slab_hit hit[HIT_PACKET];
+    biref_opl_footprint fp[HIT_PACKET]; /* with the prefilter */
     biref_hit_frames fr[HIT_PACKET];
     double hp[HIT_PACKET][3], dir[HIT_PACKET][3], T[HIT_PACKET][3], R[HIT_PACKET][3];
     biref_status status[HIT_PACKET];
@@ -206,7 +207,8 @@ typedef struct {
 static void flush_hits(const biref_renderer *r, hit_packet *p, float *row, long *fallbacks, long *nonfinite)
 {
     if (!p->n) return;
-    biref_integrate_hits(r->integrator, p->hit, (size_t)p->n, &r->light, p->T, p->R, p->status);
+    biref_integrate_hits_footprint(r->integrator, p->hit, r->prefilter ? p->fp : NULL, (size_t)p->n, &r->light, p->T,
+                                   p->R, p->status);
     for (int k = 0; k < p->n; k++) {
         double c[3];
         if (p->status[k] != BIREF_OK) {
@@ -219,7 +221,8 @@ static void flush_hits(const biref_renderer *r, hit_packet *p, float *row, long 
     p->n = 0;
 }
 
-/* A row of one sample per pixel with point look-ups, its slab hits shaded in packets. Each pixel's
+/* A row of one sample per pixel, its slab hits shaded in packets (prefiltered over each pixel's
+ * footprint with the prefilter, else point look-ups). Each pixel's
  * colour is computed as biref_render_shade_pixel's, and depends only on the pixel (a packet kernel
  * lane never sees another lane), not on how hits are grouped. */
 static void render_row_packets(const biref_renderer *r, int y, float *row, long *slab_pixels, long *fallbacks,
@@ -244,6 +247,7 @@ static void render_row_packets(const biref_renderer *r, int y, float *row, long 
         memcpy(p.dir[k], dir, sizeof dir);
         /* The slab's constants were checked when the renderer accepted them (shade.c, shade_hit). */
         p.hit[k] = (biref_slab_hit){fr->slab, fr->theta};
+        if (r->prefilter) biref_render_sample_footprint(r, hit, x + 0.5, y + 0.5, 1.0, dir, &p.fp[k]);
         p.x[k] = x;
         if (++p.n == HIT_PACKET) flush_hits(r, &p, row, fallbacks, nonfinite);
     }
@@ -276,9 +280,9 @@ biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_e
     const int rows = (y_end - y_begin + y_step - 1) / y_step;
     const int threads = r->opt.threads > 0 ? r->opt.threads : omp_get_max_threads();
     long slab_pixels = 0, fallbacks = 0, nonfinite = 0;
-    /* One sample per pixel, point look-ups and the paper's light: slab hits go to the integrator
-     * in packets (the analytic method's SIMD kernel). */
-    const int packets = r->opt.supersample == 1 && !r->prefilter && !r->world_fixed;
+    /* One sample per pixel and the paper's light: slab hits go to the integrator in packets (the
+     * analytic method's SIMD kernel, point or prefiltered look-ups). */
+    const int packets = r->opt.supersample == 1 && !r->world_fixed;
     int done = 0;
     /* Rows are independent and every pixel is computed the same way on any thread, so the
      * image does not depend on the thread count; dynamic scheduling balances rows that miss

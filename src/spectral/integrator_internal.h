@@ -4,6 +4,7 @@
 
 #include "biref/integrator.h"
 #include "spectral/analytic_packet.h"
+#include "spectral/phase_prefilter.h"
 
 /* A renderer's slab hit: a slab that biref_slab_check accepted (the axis finite and non-zero, not
  * necessarily unit) seen at theta in [0, pi/2). */
@@ -19,6 +20,14 @@ typedef struct {
  * (analytic_packet.h), the rest one by one as biref_integrate does. */
 void biref_integrate_hits(const biref_integrator *it, const biref_slab_hit *hits, size_t n, const biref_light *light,
                           double (*T)[3], double (*R)[3], biref_status *status);
+
+/* The same with every phase integral averaged over the hit's footprint fp[k] (transmission over
+ * fp[k], reflection over its flip), as biref_integrate_footprint gives them; fp NULL: point
+ * look-ups, as biref_integrate_hits. The packet kernel takes them when all footprints are of
+ * one prefilter. */
+void biref_integrate_hits_footprint(const biref_integrator *it, const biref_slab_hit *hits,
+                                    const biref_opl_footprint *fp, size_t n, const biref_light *light, double (*T)[3],
+                                    double (*R)[3], biref_status *status);
 
 /* The instruction set of the integrator's packet kernel (BIREF_SIMD_SCALAR: none). */
 biref_simd_isa biref_integrator_simd(const biref_integrator *it);

@@ -16,8 +16,6 @@
 
 /* Same quadrature as the point table (midpoint rule, relative error (phi' h)^2 / 24). */
 #define BUILD_DLAMBDA_NM 0.05
-/* Below this width the box average and the point value differ by < (2 pi w / 380 nm)^2 / 24 < 1e-8. */
-#define POINT_WIDTH_NM 1e-3
 
 struct biref_phase_prefilter {
     const biref_spectral *sp;
@@ -107,6 +105,8 @@ void biref_phase_prefilter_destroy(biref_phase_prefilter *pf)
     free(pf);
 }
 
+const double *biref_phase_prefilter_table(const biref_phase_prefilter *pf) { return pf->table; }
+
 /* Q_j(D) for D >= 0. */
 static void antiderivative(const biref_phase_prefilter *pf, double d, double complex q[3])
 {
@@ -133,7 +133,7 @@ static void antiderivative_signed(const biref_phase_prefilter *pf, double d, dou
 void biref_phase_integrals_box(const biref_phase_prefilter *pf, double opd, double width, double c[3], double s[3])
 {
     width = fabs(width);
-    if (!(width > POINT_WIDTH_NM)) {
+    if (!(width > BIREF_PREFILTER_POINT_WIDTH_NM)) {
         biref_spectral_phase_integrals(pf->sp, opd, c, s);
         return;
     }

@@ -313,12 +313,6 @@ static biref_status scalar_slab_hit(const biref_integrator *it, const biref_slab
     return s != BIREF_OK ? s : scalar_hit(it, &st, fp, light, T, R);
 }
 
-void biref_integrate_hits(const biref_integrator *it, const biref_slab_hit *hits, size_t n, const biref_light *light,
-                          double (*T)[3], double (*R)[3], biref_status *status)
-{
-    biref_integrate_hits_footprint(it, hits, NULL, n, light, T, R, status);
-}
-
 /* Can the packet kernel take these footprints? All of one prefilter (the kernel reads one table). */
 static int one_prefilter(const biref_opl_footprint *fp, size_t n)
 {
@@ -327,11 +321,39 @@ static int one_prefilter(const biref_opl_footprint *fp, size_t n)
     return 1;
 }
 
-void biref_integrate_hits_footprint(const biref_integrator *it, const biref_slab_hit *hits,
-                                    const biref_opl_footprint *fp, size_t n, const biref_light *light, double (*T)[3],
-                                    double (*R)[3], biref_status *status)
+void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_hit *hits, size_t n,
+                                 const biref_light *light, double (*T)[3], double (*R)[3], unsigned char *scalar)
 {
-    const int packets = it->hits && light->sp_model && (!fp || one_prefilter(fp, n));
+    biref_integrate_packet_hits_footprint(it, hits, NULL, n, light, T, R, scalar);
+}
+
+void biref_integrate_packet_hits_footprint(const biref_integrator *it, const biref_packet_hit *hits,
+                                           const biref_opl_footprint *fp, size_t n, const biref_light *light,
+                                           double (*T)[3], double (*R)[3], unsigned char *scalar)
+{
+    if (it->hits && light->sp_model && (!fp || one_prefilter(fp, n)))
+        it->hits(it->sp, light->w_in, light->mask, hits, n, T, R, scalar, fp);
+    else
+        memset(scalar, 1, n);
+}
+
+biref_status biref_integrate_hit(const biref_integrator *it, const biref_slab_hit *hit, const biref_light *light,
+                                 double T[3], double R[3])
+{
+    return scalar_slab_hit(it, hit, NULL, light, T, R);
+}
+
+biref_status biref_integrate_hit_footprint(const biref_integrator *it, const biref_slab_hit *hit,
+                                           const biref_opl_footprint *fp, const biref_light *light, double T[3],
+                                           double R[3])
+{
+    return scalar_slab_hit(it, hit, fp, light, T, R);
+}
+
+void biref_integrate_hits(const biref_integrator *it, const biref_slab_hit *hits, size_t n, const biref_light *light,
+                          double (*T)[3], double (*R)[3], biref_status *status)
+{
+    const int packets = it->hits && light->sp_model;
     biref_packet_hit ph[PACKET_CHUNK];
     unsigned char scalar[PACKET_CHUNK];
     for (size_t k0 = 0; k0 < n; k0 += PACKET_CHUNK) {
@@ -342,11 +364,11 @@ void biref_integrate_hits_footprint(const biref_integrator *it, const biref_slab
                 ph[k] = (biref_packet_hit){s->eta_o, s->eta_e, {s->axis[0], s->axis[1], s->axis[2]}, s->thickness_nm,
                                            s->eta_i, s->eta_i * sin(hits[k0 + k].theta)}; /* eq. 1, as slab.c */
             }
-            it->hits(it->sp, light->w_in, light->mask, ph, m, T + k0, R + k0, scalar, fp ? fp + k0 : NULL);
+            it->hits(it->sp, light->w_in, light->mask, ph, m, T + k0, R + k0, scalar, NULL);
         }
         for (size_t k = k0; k < k0 + m; k++) {
             if (!packets || scalar[k - k0])
-                status[k] = scalar_slab_hit(it, &hits[k], fp ? &fp[k] : NULL, light, T[k], R[k]);
+                status[k] = scalar_slab_hit(it, &hits[k], NULL, light, T[k], R[k]);
             else
                 status[k] = finite3(T[k]) && finite3(R[k]) ? BIREF_OK : BIREF_ERR_ILLCOND;
         }

@@ -20,6 +20,7 @@
 struct biref_phase_prefilter {
     const biref_spectral *sp;
     double *table; /* [m][band][re, im, dre/dD, dim/dD] of q(D) = e^{-2 pi i nu_c D} Q(D) */
+    double *packet_table; /* the same for the packet kernel (biref_table_packet_layout) */
 };
 
 /* Nodes per block of the parallel build. */
@@ -94,6 +95,13 @@ biref_status biref_phase_prefilter_create(const biref_spectral *sp, biref_phase_
         biref_phase_prefilter_destroy(pf);
         return BIREF_ERR_NOMEM;
     }
+    /* Aligned for the kernel's whole-vector loads (as the point table's copy, spectral_context.c). */
+    pf->packet_table = aligned_alloc(64, (size_t)sp->nodes * BIREF_PACKET_TABLE_STRIDE * sizeof *pf->packet_table);
+    if (!pf->packet_table) {
+        biref_phase_prefilter_destroy(pf);
+        return BIREF_ERR_NOMEM;
+    }
+    biref_table_packet_layout(pf->table, sp->carrier, sp->nodes, pf->packet_table);
     *out = pf;
     return BIREF_OK;
 }
@@ -102,10 +110,11 @@ void biref_phase_prefilter_destroy(biref_phase_prefilter *pf)
 {
     if (!pf) return;
     free(pf->table);
+    free(pf->packet_table);
     free(pf);
 }
 
-const double *biref_phase_prefilter_table(const biref_phase_prefilter *pf) { return pf->table; }
+const double *biref_phase_prefilter_packet_table(const biref_phase_prefilter *pf) { return pf->packet_table; }
 
 /* Q_j(D) for D >= 0. */
 static void antiderivative(const biref_phase_prefilter *pf, double d, double complex q[3])

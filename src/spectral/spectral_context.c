@@ -141,6 +141,13 @@ biref_status biref_spectral_create(const biref_spectral_config *cfg_in, biref_sp
         sp->carrier[2 * m] = creal(z);
         sp->carrier[2 * m + 1] = cimag(z);
     }
+    /* Nodes * 128 bytes: a whole number of 64-byte lines, as aligned_alloc requires. */
+    sp->packet_table = aligned_alloc(64, (size_t)sp->nodes * BIREF_PACKET_TABLE_STRIDE * sizeof *sp->packet_table);
+    if (!sp->packet_table) {
+        biref_spectral_destroy(sp);
+        return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
+    }
+    biref_table_packet_layout(sp->table, sp->carrier, sp->nodes, sp->packet_table);
     double lo[3], hi[3];
     biref_cmf_band_eval(&sp->band, cfg.lambda_min_nm, lo);
     biref_cmf_band_eval(&sp->band, cfg.lambda_max_nm, hi);
@@ -176,6 +183,7 @@ void biref_spectral_destroy(biref_spectral *sp)
     if (!sp) return;
     free(sp->table);
     free(sp->carrier);
+    free(sp->packet_table);
     for (int i = 0; i < sp->n_coherent; i++) biref_numeric_plan_destroy(sp->coherent[i]);
     free(sp);
 }

@@ -33,4 +33,28 @@ static inline double complex biref_table_accumulate(double *rows, int count, con
     return z;
 }
 
+/* The packet kernel's copy of a demodulated table (12 doubles per node, as above) and its node
+ * carriers ([m][re, im]): per node 16 doubles, [F_j re, im for the bands j = 0..2, carrier re,
+ * im | dF_j/dD re, im, 0, 0]. One lane's Hermite interpolation between nodes m and m + 1 then
+ * reads the 32 contiguous doubles from 16 m: whole vector loads instead of one gather per value
+ * (analytic_packet_kernel.inc, v_table_rows). The values are copied, not recomputed, so the
+ * kernel interpolates the same numbers as spectral_table_eval. */
+#define BIREF_PACKET_TABLE_STRIDE 16
+static inline void biref_table_packet_layout(const double *table, const double *carrier, int nodes, double *out)
+{
+    for (int m = 0; m < nodes; m++) {
+        const double *in = table + (size_t)m * 12;
+        double *row = out + (size_t)m * BIREF_PACKET_TABLE_STRIDE;
+        for (int j = 0; j < 3; j++) {
+            row[2 * j] = in[4 * j];
+            row[2 * j + 1] = in[4 * j + 1];
+            row[8 + 2 * j] = in[4 * j + 2];
+            row[8 + 2 * j + 1] = in[4 * j + 3];
+        }
+        row[6] = carrier[2 * m];
+        row[7] = carrier[2 * m + 1];
+        row[14] = row[15] = 0.0; /* weighted like derivatives: must add exactly 0 */
+    }
+}
+
 #endif

@@ -17,7 +17,7 @@
 /* Character scales: axis text, and the smaller labels, notes and legends. */
 #define TEXT_SCALE 0.62
 #define SMALL_SCALE 0.52
-#define LEGEND_SCALE 0.47 /* a legend row holds up to nine entries */
+#define LEGEND_SCALE 0.47 /* legend text: a row holds about six entries */
 
 static const char *const WHICH_TITLE[2] = {"transmission", "reflection"};
 
@@ -111,26 +111,28 @@ typedef struct {
     const char *sym;
 } legend_entry;
 
-static void bottom_legend(int n, const legend_entry *e)
+/* Characters, not bytes: the labels carry Δ, θ and °, two bytes each in UTF-8. */
+static double text_chars(const char *t)
 {
-    plvpor(0.03, 0.97, 0.012, 0.062);
-    plwind(0.0, 1.0, 0.0, 1.0);
-    plcol0(FIG_BLACK);
-    plwidth(1.0);
-    plbox("bc", 0.0, 0, "bc", 0.0, 0);
-    /* Each column: the sample, a gap, its text and a gap before the next sample; what the samples
-     * and gaps leave is shared in proportion to the text lengths, so no text runs into the next
-     * entry's sample. */
+    double n = 0.0;
+    for (; *t; t++) n += ((unsigned char)*t & 0xC0) != 0x80;
+    return n;
+}
+
+/* One row of entries at height y (0 bottom, 1 top of the strip). Each column: the sample, a gap,
+ * its text and a gap before the next sample; what the samples and gaps leave is shared in
+ * proportion to the text lengths, so no text runs into the next entry's sample. */
+static void legend_row(int n, const legend_entry *e, double y)
+{
     double len[16], total = 0.0;
     if (n > 16) n = 16;
-    for (int i = 0; i < n; i++) total += len[i] = (double)strlen(e[i].text);
+    for (int i = 0; i < n; i++) total += len[i] = text_chars(e[i].text);
     const double sample = 0.03, gap = 0.008, pad = 0.014, fixed = sample + gap + pad;
     const double spare = 0.98 - n * fixed;
-    plschr(0.0, LEGEND_SCALE);
     double x0 = 0.01;
     for (int i = 0; i < n; i++) {
         if (i) x0 += fixed + spare * len[i - 1] / total;
-        double lx[2] = {x0, x0 + sample}, ly[2] = {0.5, 0.5};
+        double lx[2] = {x0, x0 + sample}, ly[2] = {y, y};
         plcol0(e[i].color);
         if (e[i].lsty > 0) {
             pllsty(e[i].lsty);
@@ -140,12 +142,31 @@ static void bottom_legend(int n, const legend_entry *e)
             plwidth(1.0);
         }
         if (e[i].sym) {
-            double sx = x0 + 0.5 * sample, sy = 0.5;
+            double sx = x0 + 0.5 * sample, sy = y;
             plssym(0.0, 1.1);
             plstring(1, &sx, &sy, e[i].sym);
         }
         plcol0(FIG_BLACK);
-        plptex(x0 + sample + gap, 0.5, 1.0, 0.0, 0.0, e[i].text);
+        plptex(x0 + sample + gap, y, 1.0, 0.0, 0.0, e[i].text);
+    }
+}
+
+/* The legend in the strip at the bottom of the page; entries from `split` on go to a second row
+ * (split >= n: one row). Nine entries of up to 20 characters do not fit one row at this text
+ * size: they ran into each other. */
+static void bottom_legend(int n, const legend_entry *e, int split)
+{
+    plvpor(0.03, 0.97, 0.012, 0.062);
+    plwind(0.0, 1.0, 0.0, 1.0);
+    plcol0(FIG_BLACK);
+    plwidth(1.0);
+    plbox("bc", 0.0, 0, "bc", 0.0, 0);
+    plschr(0.0, LEGEND_SCALE);
+    if (split >= n) {
+        legend_row(n, e, 0.5);
+    } else {
+        legend_row(split, e, 0.72);
+        legend_row(n - split, e + split, 0.28);
     }
     plschr(0.0, TEXT_SCALE);
 }
@@ -211,7 +232,7 @@ int acc_plot_vs_cost(const char *path, const acc_plot_cost_point *p, int n, cons
                                 {"path-group expansion", FIG_BLUE, 0, 0.0, MARK_MEAN},
                                 {"numeric, N samples (label: N)", FIG_GREY, 1, 1.0, MARK_MEAN},
                                 {"ΔE00 = 1", FIG_GREY, 3, 1.0, NULL}};
-    bottom_legend(sizeof leg / sizeof leg[0], leg);
+    bottom_legend(sizeof leg / sizeof leg[0], leg, sizeof leg / sizeof leg[0]);
     floor_note();
     if (fig_plot_end()) return cli_error("accuracy", "--plot-dir: %s", fig_plot_message()), -1;
     return 0;
@@ -273,13 +294,14 @@ int acc_plot_vs_theta(const char *path, const acc_plot_theta_data *d)
     legend_entry leg[MAXL];
     int nl = 0;
     for (int k = 0; k < d->nmeth && nl < MAXL - 4; k++) leg[nl++] = (legend_entry){d->meth_name[k], d->meth_color[k], 1, 1.6, NULL};
+    const int split = nl; /* the line styles and guides on a second row */
     leg[nl++] = (legend_entry){"max over azimuths", FIG_BLACK, 1, 1.6, NULL};
     leg[nl++] = (legend_entry){"mean over azimuths", FIG_BLACK, 2, 1.0, NULL};
     char guide[64];
     snprintf(guide, sizeof guide, "θ = %g°", d->mark_deg);
     if (d->mark_deg > 0.0 && d->mark_deg < th1) leg[nl++] = (legend_entry){guide, FIG_GREY, 3, 1.0, NULL};
     leg[nl++] = (legend_entry){"ΔE00 = 1", FIG_GREY, 3, 1.0, NULL};
-    bottom_legend(nl, leg);
+    bottom_legend(nl, leg, split);
     floor_note();
     if (fig_plot_end()) return cli_error("accuracy", "--plot-dir: %s", fig_plot_message()), -1;
     return 0;

@@ -44,3 +44,14 @@ void biref_render_footprint(const biref_renderer *r, const render_slab *sl, cons
         }
     }
 }
+
+void biref_render_sample_footprint(const biref_renderer *r, const render_slab *sl, double fx, double fy, double h,
+                                   const double dir[3], biref_opl_footprint *fp)
+{
+    double d1[3], dx[3], dy[3];
+    biref_render_camera_ray_at(&r->cam, fx + h, fy, d1);
+    v3_sub(d1, dir, dx);
+    biref_render_camera_ray_at(&r->cam, fx, fy + h, d1);
+    v3_sub(d1, dir, dy);
+    biref_render_footprint(r, sl, dir, dx, dy, fp);
+}

@@ -197,7 +197,7 @@ static void store_pixel(const biref_renderer *r, const double c[3], float *px, l
     }
 }
 
-/* A row of one sample per pixel with point look-ups, in tiles (render_tile.c): each pixel's
+/* A row of one sample per pixel, in tiles (render_tile.c): each pixel's
  * colour is biref_render_shade_pixel's and depends only on the pixel, not on the tiling. */
 static void render_row_tiles(const biref_renderer *r, int y, float *row, render_tile_counts *counts)
 {
@@ -234,9 +234,9 @@ biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_e
     const int rows = (y_end - y_begin + y_step - 1) / y_step;
     const int threads = r->opt.threads > 0 ? r->opt.threads : omp_get_max_threads();
     long slab_pixels = 0, fallbacks = 0, nonfinite = 0;
-    /* One sample per pixel, point look-ups and the paper's light: tiles of pixels in lanes, the
-     * slab hits in the integrator's packets (the analytic method's SIMD kernel). */
-    const int packets = r->opt.supersample == 1 && !r->prefilter && !r->world_fixed;
+    /* One sample per pixel and the paper's light: tiles of pixels in lanes, the slab hits in the
+     * integrator's packets (the analytic method's SIMD kernel, point or prefiltered look-ups). */
+    const int packets = r->opt.supersample == 1 && !r->world_fixed;
     int done = 0;
     /* Rows are independent and every pixel is computed the same way on any thread, so the
      * image does not depend on the thread count; dynamic scheduling balances rows that miss

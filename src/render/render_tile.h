@@ -2,9 +2,10 @@
  * arrays. Camera rays, the nearest-slab test, the slab hits' frames, the radiance look-ups and the
  * colours run in branch-free loops across the tile's pixels (which the compiler vectorises); the
  * hits go to the analytic method's packet kernel together. Every pixel's colour is
- * biref_render_shade_pixel's (point look-ups): the geometry and radiance to the bit, the kernel's
- * input K = eta_i sin(theta) from cos(theta) instead of through acos and sin (a rounding apart),
- * and hits the kernel declines through the scalar path as before.
+ * biref_render_shade_pixel's (point look-ups, or with the prefilter each phase integral averaged
+ * over the pixel's footprint): the geometry and radiance to the bit, the kernel's input
+ * K = eta_i sin(theta) from cos(theta) instead of through acos and sin (a rounding apart), and hits
+ * the kernel declines through the scalar path as before.
  *
  * The hits are compact (hit k belongs to pixel px[k]; hits on the same slab are consecutive) so
  * that a per-hit input the kernel may need, such as a prefilter footprint from the neighbouring
@@ -38,6 +39,7 @@ typedef struct {
     biref_packet_hit in[RENDER_TILE]; /* the kernel's input */
     double T[RENDER_TILE][3], R[RENDER_TILE][3];
     unsigned char scalar[RENDER_TILE];
+    biref_opl_footprint fp[RENDER_TILE]; /* with the prefilter: hit k's footprint (footprint.c) */
     render_lanes3 Lb, Lf;             /* radiance from behind (or of the background) and from the mirror */
     render_lanes3 xyz;                /* the pixels' colours */
 } render_tile;
@@ -48,8 +50,8 @@ typedef struct {
 } render_tile_counts;
 
 /* Shades pixels x0 .. x0 + n - 1 (n <= RENDER_TILE) of row y into row (3 floats a pixel, row y's
- * start), one sample each with point look-ups under the paper's light (no world-fixed polarizer),
- * with the instruction set the renderer chose (r->tile_isa; every one gives the same bits). */
+ * start), one sample each with point or prefiltered look-ups under the paper's light (no
+ * world-fixed polarizer), with the instruction set the renderer chose (r->tile_isa; every one gives the same bits). */
 void biref_render_tile(const biref_renderer *r, render_tile *tile, int x0, int y, int n, float *row,
                        render_tile_counts *counts);
 /* The instruction set for the tiles: AVX-512 or AVX2 when biref_simd_isa_choose picks it (which

@@ -50,6 +50,21 @@ static void tile_nearest_slabs(const biref_renderer *r, render_tile *tl)
     }
 }
 
+/* The prefilter's footprint of pixel j (footprint.c) from its neighbours' rays to the right and
+ * below: the right one is the next pixel's ray, already in the tile (biref_render_camera_ray's
+ * bits) except at the tile's end. */
+static void tile_footprint(const biref_renderer *r, const render_tile *tl, const render_slab *sl, int j,
+                           const double d[3], biref_opl_footprint *fp)
+{
+    double dx[3], dy[3];
+    if (j + 1 < tl->n)
+        for (int i = 0; i < 3; i++) dx[i] = tl->dir[i][j + 1];
+    else
+        biref_render_camera_ray_at(&r->cam, tl->x0 + j + 1.5, tl->y + 0.5, dx);
+    biref_render_camera_ray_at(&r->cam, tl->x0 + j + 0.5, tl->y + 1.5, dy);
+    biref_render_footprint_rays(r, sl, d, dx, dy, fp);
+}
+
 /* The kernel's input of every hit: the optic axis in the hit's transmission frame (the dot
  * products of biref_render_hit_frames, to the bit) and K = eta_i sin(theta) from
  * cos(theta) = |dir . normal|, clamped as the frames clamp theta (sin(acos(c)) = sqrt(1 - c^2)
@@ -86,8 +101,7 @@ static void tile_hits(const biref_renderer *r, render_tile *tl)
                                        b->eta_i,
                                        b->eta_i * sqrt((1.0 - c) * (1.0 + c))};
         tl->dn[k] = dn;
-        /* The prefilter's footprint: the neighbouring pixels' rays, as sample_pixel steps them. */
-        if (r->prefilter) biref_render_sample_footprint(r, sl, tl->x0 + j + 0.5, tl->y + 0.5, 1.0, d, &tl->fp[k]);
+        if (r->prefilter) tile_footprint(r, tl, sl, j, d, &tl->fp[k]);
     }
 }
 

@@ -13,6 +13,7 @@
 #include "biref/biref.h"
 #include "render/render_internal.h"
 #include "render/render_tile.h"
+#include "spectral/analytic_packet.h"
 #include "spectral/integrator_internal.h"
 #include "test_cases.h"
 #include "test_render_util.h"
@@ -32,8 +33,9 @@ static const char MIXED[] =
     "  \"polarization\": {\"type\": \"sp\", \"s\": 0.7, \"p\": 0.3}},"
     " \"filter\": {\"type\": \"p\"}}";
 
-/* A renderer of the scene at width x height on the instruction set isa (BIREF_SIMD). */
-static biref_renderer *make(const char *path, const char *isa, int width, int height)
+/* A renderer of the scene at width x height on the instruction set isa (BIREF_SIMD), with point or
+ * prefiltered look-ups. */
+static biref_renderer *make(const char *path, const char *isa, int width, int height, biref_antialias aa)
 {
     biref_scene sc;
     char msg[256];
@@ -50,6 +52,7 @@ static biref_renderer *make(const char *path, const char *isa, int width, int he
     biref_render_options opt;
     biref_render_options_default(&opt);
     opt.threads = 2;
+    opt.antialias = aa;
     biref_renderer *r = NULL;
     if (biref_renderer_create(&sc, &opt, &r, msg, sizeof msg) != BIREF_OK) fprintf(stderr, "renderer: %s\n", msg);
     unsetenv("BIREF_SIMD");
@@ -57,7 +60,9 @@ static biref_renderer *make(const char *path, const char *isa, int width, int he
     return r;
 }
 
-/* The image pixel by pixel through biref_render_shade_pixel, stored as the renderer stores. */
+/* The image pixel by pixel through biref_render_shade_pixel, stored as the renderer stores; with
+ * the prefilter each footprint spans the steps to the next pixel's ray right and below (as
+ * sample_pixel steps one sample per pixel). */
 static float *render_pixels(const biref_renderer *r, long *slab_pixels, long *fallbacks)
 {
     const int W = biref_renderer_width(r), H = biref_renderer_height(r);
@@ -68,7 +73,12 @@ static float *render_pixels(const biref_renderer *r, long *slab_pixels, long *fa
             double dir[3], c[3];
             int fb;
             biref_render_camera_ray(&r->cam, x, y, dir);
-            *slab_pixels += biref_render_shade_pixel(r, dir, NULL, NULL, c, &fb);
+            double d1[3], dx[3], dy[3];
+            biref_render_camera_ray_at(&r->cam, x + 1.5, y + 0.5, d1);
+            for (int i = 0; i < 3; i++) dx[i] = d1[i] - dir[i];
+            biref_render_camera_ray_at(&r->cam, x + 0.5, y + 1.5, d1);
+            for (int i = 0; i < 3; i++) dy[i] = d1[i] - dir[i];
+            *slab_pixels += biref_render_shade_pixel(r, dir, dx, dy, c, &fb);
             *fallbacks += fb;
             for (int i = 0; i < 3; i++) {
                 const double v = c[i] * r->exposure;
@@ -108,19 +118,24 @@ static double compare(const biref_renderer *r, const char *what)
 static const char *const SCENES[] = {"examples/fig9a.json", "examples/fig9b.json", "examples/fig9c.json",
                                      "examples/default.json", NULL};
 #define N_SCENES (sizeof SCENES / sizeof SCENES[0])
+static const biref_antialias AA[2] = {BIREF_ANTIALIAS_NONE, BIREF_ANTIALIAS_PREFILTER};
+static const char *const AA_NAME[2] = {"point look-ups", "prefilter"};
 
 /* Without the packet kernel every hit goes the scalar way from the same frames: the tiles must
  * give the per-pixel path's image to the bit (rays, intersections, frames, radiance, colours). */
 static void test_tiles_equal_pixels_scalar(void)
 {
     const int W = quick ? 37 : 45, H = quick ? 9 : 24; /* 45 = a full tile and a partial one */
-    for (size_t i = 0; i < N_SCENES; i++) {
-        if (quick && i > 0 && SCENES[i]) continue;
-        biref_renderer *r = make(SCENES[i], "scalar", W, H);
-        if (!r) continue;
-        CHECK(compare(r, SCENES[i] ? SCENES[i] : "mixed scene, scalar") == 0.0);
-        biref_renderer_destroy(r);
-    }
+    for (int aa = 0; aa < 2; aa++)
+        for (size_t i = 0; i < N_SCENES; i++) {
+            if (quick && i > 0 && SCENES[i]) continue;
+            biref_renderer *r = make(SCENES[i], "scalar", W, H, AA[aa]);
+            if (!r) continue;
+            char what[96];
+            snprintf(what, sizeof what, "%s, scalar, %s", SCENES[i] ? SCENES[i] : "mixed scene", AA_NAME[aa]);
+            CHECK(compare(r, what) == 0.0);
+            biref_renderer_destroy(r);
+        }
 }
 
 /* With the packet kernel the hits' factors differ from the scalar worker's by roundings (its K
@@ -132,16 +147,45 @@ static void test_tiles_near_pixels_kernel(void)
     for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
         if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
         const char *name = biref_simd_isa_name((biref_simd_isa)isa);
-        for (size_t i = 0; i < N_SCENES; i++) {
-            if (quick && i > 0 && SCENES[i]) continue;
-            biref_renderer *r = make(SCENES[i], name, W, H);
-            if (!r) continue;
-            char what[96];
-            snprintf(what, sizeof what, "%s, %s", SCENES[i] ? SCENES[i] : "mixed scene", name);
-            const double worst = compare(r, what);
-            CHECK(worst >= 0.0 && worst <= 64.0);
-            biref_renderer_destroy(r);
+        for (int aa = 0; aa < 2; aa++)
+            for (size_t i = 0; i < N_SCENES; i++) {
+                if (quick && i > 0 && SCENES[i]) continue;
+                biref_renderer *r = make(SCENES[i], name, W, H, AA[aa]);
+                if (!r) continue;
+                char what[96];
+                snprintf(what, sizeof what, "%s, %s, %s", SCENES[i] ? SCENES[i] : "mixed scene", name, AA_NAME[aa]);
+                const double worst = compare(r, what);
+                CHECK(worst >= 0.0 && worst <= 64.0);
+                biref_renderer_destroy(r);
+            }
+    }
+}
+
+/* The tiles compiled for each instruction set give the same bits (no contracted multiply-adds):
+ * the same renderer, only its tiles' instruction set changed. */
+static void test_tile_isas_identical(void)
+{
+    const int W = quick ? 37 : 45, H = quick ? 9 : 24;
+    const size_t n = (size_t)W * H * 3;
+    for (size_t i = 0; i < N_SCENES; i++) {
+        if (quick && i > 0 && SCENES[i]) continue;
+        biref_renderer *r = make(SCENES[i], "baseline", W, H, BIREF_ANTIALIAS_PREFILTER);
+        if (!r) continue;
+        float *ref = malloc(n * sizeof *ref), *a = malloc(n * sizeof *a);
+        r->tile_isa = BIREF_SIMD_BASELINE;
+        CHECK(biref_render_image(r, ref, NULL, NULL, NULL) == BIREF_OK);
+        for (int isa = BIREF_SIMD_AVX2; isa < BIREF_SIMD_COUNT; isa++) {
+            if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
+            r->tile_isa = isa;
+            CHECK(biref_render_image(r, a, NULL, NULL, NULL) == BIREF_OK);
+            const int same = memcmp(a, ref, n * sizeof *a) == 0;
+            printf("%s: %s tiles %s the baseline's\n", SCENES[i] ? SCENES[i] : "mixed scene",
+                   biref_simd_isa_name((biref_simd_isa)isa), same ? "equal" : "DIFFER FROM");
+            CHECK(same);
         }
+        free(ref);
+        free(a);
+        biref_renderer_destroy(r);
     }
 }
 
@@ -151,6 +195,7 @@ int main(int argc, char **argv)
     static const test_case cases[] = {
         {"tiles_equal_pixels_scalar", test_tiles_equal_pixels_scalar},
         {"tiles_near_pixels_kernel", test_tiles_near_pixels_kernel},
+        {"tile_isas_identical", test_tile_isas_identical},
     };
     return test_run_cases("test_render_tile", cases, TEST_COUNT(cases), argc, argv);
 }

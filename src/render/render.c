@@ -103,6 +103,7 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
     r->mask[0] = scene->filter.type == BIREF_FILTER_P ? 0.0 : 1.0;
     r->mask[1] = scene->filter.type == BIREF_FILTER_S ? 0.0 : 1.0;
     r->passthrough_sp = biref_render_passthrough_sp(r);
+    r->tile_isa = biref_render_tile_isa();
 
     biref_spectral_config cfg;
     biref_spectral_config_default(&cfg);

@@ -62,6 +62,7 @@ struct biref_renderer {
     biref_integrator *integrator;
     biref_phase_prefilter *prefilter; /* antialias prefilter: analytic and expansion */
     double passthrough_sp; /* biref_render_passthrough_sp */
+    int tile_isa;          /* biref_render_tile_isa */
 };
 
 /* camera.c */

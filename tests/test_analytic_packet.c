@@ -13,6 +13,7 @@
 #include "render/render_internal.h"
 #include "spectral/analytic_packet.h"
 #include "spectral/integrator_internal.h"
+#include "spectral/phase_prefilter.h"
 #include "spectral/spectral_internal.h"
 #include "test_cases.h"
 
@@ -144,7 +145,7 @@ static void test_hit_kernels_vs_scalar(void)
     }
     for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
         if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
-        biref_simd_hits_kernel((biref_simd_isa)isa)(sp, w_in, mask, hits, n, T, R, scalar);
+        biref_simd_hits_kernel((biref_simd_isa)isa)(sp, w_in, mask, hits, n, T, R, scalar, NULL);
         double worst = 0.0;
         int taken = 0, declined = 0;
         for (size_t k = 0; k < n; k++) {
@@ -166,7 +167,89 @@ static void test_hit_kernels_vs_scalar(void)
     biref_spectral_destroy(sp);
 }
 
-static float *render_with(const char *path, const char *isa, int threads, int w, int h)
+/* A random footprint: every leg's change across the pixel from none through sub-nanometre (below
+ * the point-width threshold) to many fringes, some legs still. */
+static void random_footprint(test_rng *rng, const biref_phase_prefilter *pf, biref_opl_footprint *fp)
+{
+    fp->pf = pf;
+    const double scale = exp(test_uniform(rng, log(1e-5), log(3e4)));
+    for (int l = 0; l < 4; l++)
+        for (int k = 0; k < 2; k++) fp->grad[l][k] = test_uniform(rng, 0, 1) < 0.2 ? 0.0 : scale * test_uniform(rng, -1, 1);
+}
+
+/* The hit kernels with footprints against the scalar prefiltered path (biref_integrate_footprint
+ * of the state over the footprint, of its flip over the flipped footprint): every box average in
+ * lanes must be the scalar one to rounding. Hits whose lanes differ in width (zero, below the
+ * point threshold, wide) share packets. */
+static void prefiltered_hit_kernels_vs_scalar(void)
+{
+    biref_spectral *sp = NULL;
+    biref_phase_prefilter *pf = NULL;
+    biref_integrator *it = NULL;
+    CHECK(biref_spectral_create(NULL, &sp, NULL, 0) == BIREF_OK);
+    CHECK(biref_phase_prefilter_create(sp, &pf) == BIREF_OK);
+    biref_integrator_options io;
+    biref_integrator_options_default(&io);
+    CHECK(biref_integrator_create(sp, &io, &it, NULL, 0) == BIREF_OK);
+    enum { N = 603 };
+    static biref_packet_hit hits[N];
+    static biref_slab_state states[N];
+    static biref_opl_footprint fps[N];
+    static double wantT[N][3], wantR[N][3], plainT[N][3], T[N][3], R[N][3];
+    static unsigned char scalar[N];
+    test_rng rng = {0x5eedu};
+    const double w_in[2] = {0.3, 0.7}, mask[2] = {1.0, 0.6};
+    biref_light light;
+    CHECK(biref_light_sp(w_in, mask, &light) == BIREF_OK);
+    size_t n = 0;
+    while (n < N) {
+        biref_slab s;
+        double theta;
+        random_slab(&rng, (int)n, &s, &theta);
+        if (biref_slab_prepare_trusted(&s, theta, &states[n]) != BIREF_OK || !biref_packet_eligible(sp, &states[n]))
+            continue;
+        hits[n] = (biref_packet_hit){s.eta_o, s.eta_e, {0, 0, 0}, s.thickness_nm, s.eta_i, s.eta_i * sin(theta)};
+        biref_axis_unit_unchecked(s.axis, hits[n].axis);
+        random_footprint(&rng, pf, &fps[n]);
+        biref_opl_footprint fpR;
+        biref_opl_footprint_flip(&fps[n], &fpR);
+        biref_slab_state fl;
+        biref_slab_state_flip(&states[n], &fl);
+        biref_integration res;
+        CHECK(biref_integrate_footprint(it, &states[n], &fps[n], BIREF_SIDE_TRANSMISSION, &light, &res) == BIREF_OK);
+        memcpy(wantT[n], res.T, sizeof res.T);
+        CHECK(biref_integrate_footprint(it, &fl, &fpR, BIREF_SIDE_REFLECTION, &light, &res) == BIREF_OK);
+        memcpy(wantR[n], res.R, sizeof res.R);
+        biref_analytic_mixed(sp, &states[n], BIREF_TRANSMISSION, w_in, mask, plainT[n]);
+        n++;
+    }
+    /* The footprints matter: the prefiltered results are not the point ones. */
+    double moved = 0.0;
+    for (size_t k = 0; k < n; k++)
+        for (int b = 0; b < 3; b++) moved = fmax(moved, fabs(wantT[k][b] - plainT[k][b]));
+    CHECK(moved > 0.05);
+    for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
+        if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
+        biref_simd_hits_kernel((biref_simd_isa)isa)(sp, w_in, mask, hits, n, T, R, scalar, fps);
+        double worst = 0.0;
+        int taken = 0;
+        for (size_t k = 0; k < n; k++) {
+            if (scalar[k]) continue;
+            taken++;
+            for (int b = 0; b < 3; b++)
+                worst = fmax(worst, fmax(fabs(T[k][b] - wantT[k][b]), fabs(R[k][b] - wantR[k][b])));
+        }
+        printf("%s: %d of %zu prefiltered hits in lanes, max |packet - scalar| = %.3g (point vs box up to %.2g)\n",
+               biref_simd_isa_name((biref_simd_isa)isa), taken, n, worst, moved);
+        CHECK(taken >= (int)n - (int)n / 100);
+        CHECK(worst < 1e-11);
+    }
+    biref_integrator_destroy(it);
+    biref_phase_prefilter_destroy(pf);
+    biref_spectral_destroy(sp);
+}
+
+static float *render_with(const char *path, const char *isa, biref_antialias aa, int threads, int w, int h)
 {
     biref_scene sc;
     char msg[256];
@@ -180,6 +263,7 @@ static float *render_with(const char *path, const char *isa, int threads, int w,
     biref_render_options opt;
     biref_render_options_default(&opt);
     opt.threads = threads;
+    opt.antialias = aa;
     biref_renderer *r = NULL;
     float *xyz = NULL;
     if (biref_renderer_create(&sc, &opt, &r, msg, sizeof msg) == BIREF_OK) {
@@ -193,25 +277,27 @@ static float *render_with(const char *path, const char *isa, int threads, int w,
 }
 
 /* Small renders of the examples on every path against the scalar double path (each renderer
- * builds its own look-up table: few renderers, so that the sanitizer build stays quick). */
-static void test_renders_per_isa(void)
+ * builds its own look-up table: few renderers, so that the sanitizer build stays quick), with
+ * point or prefiltered look-ups; the first scene also on one thread, which must give the same
+ * image. */
+static void renders_per_isa(biref_antialias aa)
 {
-    const char *scenes[] = {"examples/fig9a.json", "examples/default.json", "examples/fig9b.json",
-                            "examples/fig9c.json"};
+    const char *scenes[] = {"examples/fig9a.json", "examples/aliasing/thick_grazing.json", "examples/default.json",
+                            "examples/fig9b.json", "examples/fig9c.json"};
     const size_t n_scenes = quick ? 2 : sizeof scenes / sizeof scenes[0];
     const int W = quick ? 32 : 64, H = quick ? 18 : 36;
     const size_t n = (size_t)W * H;
     for (size_t i = 0; i < n_scenes; i++) {
-        float *ref = render_with(scenes[i], "scalar", 2, W, H);
+        float *ref = render_with(scenes[i], "scalar", aa, 2, W, H);
         CHECK(ref != NULL);
         for (int isa = BIREF_SIMD_BASELINE; ref && isa < BIREF_SIMD_COUNT; isa++) {
             if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
             const char *name = biref_simd_isa_name((biref_simd_isa)isa);
-            float *a = render_with(scenes[i], name, 2, W, H);
+            float *a = render_with(scenes[i], name, aa, 2, W, H);
             CHECK(a != NULL);
             if (a && i == 0) {
                 /* The same image on one thread (other packets: hits are grouped per row). */
-                float *b = render_with(scenes[i], name, 1, W, H);
+                float *b = render_with(scenes[i], name, aa, 1, W, H);
                 CHECK(b && memcmp(a, b, n * 3 * sizeof *a) == 0);
                 free(b);
             }
@@ -224,8 +310,8 @@ static void test_renders_per_isa(void)
                     sum += d;
                     worst = fmax(worst, d);
                 }
-                printf("%s, %s: dE00 to the scalar path mean %.2g, max %.2g\n", scenes[i], name, sum / (double)n,
-                       worst);
+                printf("%s, %s, %s: dE00 to the scalar path mean %.2g, max %.2g\n", scenes[i], name,
+                       aa == BIREF_ANTIALIAS_PREFILTER ? "prefiltered" : "point", sum / (double)n, worst);
                 CHECK(sum / (double)n <= 0.02 && worst <= 0.5);
             }
             free(a);
@@ -234,6 +320,11 @@ static void test_renders_per_isa(void)
     }
 }
 
+static void test_renders_per_isa(void) { renders_per_isa(BIREF_ANTIALIAS_NONE); }
+
+/* The renderer's default: prefiltered look-ups in the kernel's lanes. */
+static void test_prefiltered_renders_per_isa(void) { renders_per_isa(BIREF_ANTIALIAS_PREFILTER); }
+
 int main(int argc, char **argv)
 {
     quick = getenv("BIREF_TEST_QUICK") != NULL;
@@ -241,7 +332,9 @@ int main(int argc, char **argv)
         {"eligibility", test_eligibility},
         {"kernels_vs_scalar_worker", test_kernels_vs_scalar},
         {"hit_kernels_vs_scalar_set_up", test_hit_kernels_vs_scalar},
+        {"prefiltered_hit_kernels_vs_scalar", prefiltered_hit_kernels_vs_scalar},
         {"renders_per_isa_vs_scalar", test_renders_per_isa},
+        {"prefiltered_renders_per_isa_vs_scalar", test_prefiltered_renders_per_isa},
     };
     return test_run_cases("test_analytic_packet", cases, TEST_COUNT(cases), argc, argv);
 }

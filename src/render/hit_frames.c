@@ -8,8 +8,7 @@
 #include "render/render_internal.h"
 #include "render/vec3.h"
 
-/* biref_slab_prepare needs theta < pi/2; a ray grazing the slab is clamped just below. */
-#define THETA_MAX (0.5 * M_PI - 1e-7)
+#define THETA_MAX BIREF_RENDER_THETA_MAX
 
 void biref_render_hit_frames(const double normal[3], const double tangent[3], const double axis_world[3],
                        const biref_slab *base, const double dir[3], biref_hit_frames *f)

@@ -9,6 +9,7 @@
 
 #include "error.h"
 #include "render/render_internal.h"
+#include "render/render_tile.h"
 #include "spectral/integrator_internal.h"
 #include "render/vec3.h"
 
@@ -72,6 +73,9 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
         sl->half_w = 0.5 * in->size[0];
         sl->half_h = 0.5 * in->size[1];
         v3_slab_axis_world(in->axis, sl->tangent, sl->normal, sl->axis_world);
+        double rel[3];
+        v3_sub(sl->center, r->cam.origin, rel);
+        sl->center_n = v3_dot(rel, sl->normal);
         sl->base.eta_o = in->eta_o;
         sl->base.eta_e = in->eta_e;
         sl->base.thickness_nm = in->thickness_nm;
@@ -98,6 +102,8 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
     r->w_in[1] = scene->polarization.type == BIREF_POL_SP ? scene->polarization.p : 0.5;
     r->mask[0] = scene->filter.type == BIREF_FILTER_P ? 0.0 : 1.0;
     r->mask[1] = scene->filter.type == BIREF_FILTER_S ? 0.0 : 1.0;
+    r->passthrough_sp = biref_render_passthrough_sp(r);
+    r->tile_isa = biref_render_tile_isa();
 
     biref_spectral_config cfg;
     biref_spectral_config_default(&cfg);
@@ -191,63 +197,15 @@ static void store_pixel(const biref_renderer *r, const double c[3], float *px, l
     }
 }
 
-/* Slab hits shaded together (biref_integrate_hits): enough for several packets of the widest
- * kernel, small enough for a thread's stack. */
-#define HIT_PACKET 32
-
-typedef struct {
-    biref_slab_hit hit[HIT_PACKET];
-    biref_hit_frames fr[HIT_PACKET];
-    double hp[HIT_PACKET][3], dir[HIT_PACKET][3], T[HIT_PACKET][3], R[HIT_PACKET][3];
-    biref_status status[HIT_PACKET];
-    int x[HIT_PACKET], n;
-} hit_packet;
-
-static void flush_hits(const biref_renderer *r, hit_packet *p, float *row, long *fallbacks, long *nonfinite)
+/* A row of one sample per pixel, in tiles (render_tile.c): each pixel's
+ * colour is biref_render_shade_pixel's and depends only on the pixel, not on the tiling. */
+static void render_row_tiles(const biref_renderer *r, int y, float *row, render_tile_counts *counts)
 {
-    if (!p->n) return;
-    biref_integrate_hits(r->integrator, p->hit, (size_t)p->n, &r->light, p->T, p->R, p->status);
-    for (int k = 0; k < p->n; k++) {
-        double c[3];
-        if (p->status[k] != BIREF_OK) {
-            biref_render_failed_hit(r, &p->fr[k], p->T[k], p->R[k]);
-            ++*fallbacks;
-        }
-        biref_render_hit_colour(r, p->hp[k], p->dir[k], &p->fr[k], p->T[k], p->R[k], c);
-        store_pixel(r, c, row + 3 * p->x[k], nonfinite);
+    render_tile tile;
+    for (int x0 = 0; x0 < r->cam.width; x0 += RENDER_TILE) {
+        const int n = r->cam.width - x0 < RENDER_TILE ? r->cam.width - x0 : RENDER_TILE;
+        biref_render_tile(r, &tile, x0, y, n, row, counts);
     }
-    p->n = 0;
-}
-
-/* A row of one sample per pixel with point look-ups, its slab hits shaded in packets. Each pixel's
- * colour is computed as biref_render_shade_pixel's, and depends only on the pixel (a packet kernel
- * lane never sees another lane), not on how hits are grouped. */
-static void render_row_packets(const biref_renderer *r, int y, float *row, long *slab_pixels, long *fallbacks,
-                               long *nonfinite)
-{
-    hit_packet p;
-    p.n = 0;
-    for (int x = 0; x < r->cam.width; x++) {
-        double dir[3], c[3], t;
-        biref_render_camera_ray(&r->cam, x, y, dir);
-        const render_slab *hit = biref_render_nearest_slab(r, dir, &t);
-        if (!hit) {
-            biref_render_background(r, dir, c);
-            store_pixel(r, c, row + 3 * x, nonfinite);
-            continue;
-        }
-        ++*slab_pixels;
-        const int k = p.n;
-        biref_hit_frames *fr = &p.fr[k];
-        biref_render_hit_frames(hit->normal, hit->tangent, hit->axis_world, &hit->base, dir, fr);
-        v3_axpy(r->cam.origin, t, dir, p.hp[k]);
-        memcpy(p.dir[k], dir, sizeof dir);
-        /* The slab's constants were checked when the renderer accepted them (shade.c, shade_hit). */
-        p.hit[k] = (biref_slab_hit){fr->slab, fr->theta};
-        p.x[k] = x;
-        if (++p.n == HIT_PACKET) flush_hits(r, &p, row, fallbacks, nonfinite);
-    }
-    flush_hits(r, &p, row, fallbacks, nonfinite);
 }
 
 /* A row pixel by pixel: supersampling, the prefilter's footprints, world-fixed polarizers. */
@@ -276,9 +234,9 @@ biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_e
     const int rows = (y_end - y_begin + y_step - 1) / y_step;
     const int threads = r->opt.threads > 0 ? r->opt.threads : omp_get_max_threads();
     long slab_pixels = 0, fallbacks = 0, nonfinite = 0;
-    /* One sample per pixel, point look-ups and the paper's light: slab hits go to the integrator
-     * in packets (the analytic method's SIMD kernel). */
-    const int packets = r->opt.supersample == 1 && !r->prefilter && !r->world_fixed;
+    /* One sample per pixel and the paper's light: tiles of pixels in lanes, the slab hits in the
+     * integrator's packets (the analytic method's SIMD kernel, point or prefiltered look-ups). */
+    const int packets = r->opt.supersample == 1 && !r->world_fixed;
     int done = 0;
     /* Rows are independent and every pixel is computed the same way on any thread, so the
      * image does not depend on the thread count; dynamic scheduling balances rows that miss
@@ -287,9 +245,13 @@ biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_e
     for (int k = 0; k < rows; k++) {
         const int y = y_begin + k * y_step;
         float *row = xyz + (size_t)y * W * 3;
-        if (packets)
-            render_row_packets(r, y, row, &slab_pixels, &fallbacks, &nonfinite);
-        else
+        if (packets) {
+            render_tile_counts c = {0, 0, 0};
+            render_row_tiles(r, y, row, &c);
+            slab_pixels += c.slab_pixels;
+            fallbacks += c.fallbacks;
+            nonfinite += c.nonfinite;
+        } else
             render_row_samples(r, y, row, &slab_pixels, &fallbacks, &nonfinite);
         if (progress) {
 #pragma omp critical(biref_render_progress)

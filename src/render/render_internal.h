@@ -10,6 +10,11 @@
 #include "biref/shading.h"
 #include "spectral/phase_prefilter.h"
 
+/* Rays leave surfaces from exactly on them; hits closer than this are the surface itself. */
+#define BIREF_RENDER_RAY_EPS 1e-9
+/* biref_slab_prepare needs theta < pi/2; a ray grazing a slab is clamped just below. */
+#define BIREF_RENDER_THETA_MAX (0.5 * M_PI - 1e-7)
+
 typedef struct {
     double origin[3];
     double forward[3], right[3], up[3]; /* orthonormal; right = forward x up_hint */
@@ -22,6 +27,7 @@ typedef struct {
     double half_w, half_h;
     double axis_world[3]; /* optic axis in world coordinates, unit */
     biref_slab base;      /* indices, thickness, eta_i; axis filled per ray */
+    double center_n;      /* (center - camera origin) . normal: the camera ray's plane distance */
 } render_slab;
 
 typedef struct {
@@ -55,6 +61,8 @@ struct biref_renderer {
     biref_spectral *sp;
     biref_integrator *integrator;
     biref_phase_prefilter *prefilter; /* antialias prefilter: analytic and expansion */
+    double passthrough_sp; /* biref_render_passthrough_sp */
+    int tile_isa;          /* biref_render_tile_isa */
 };
 
 /* camera.c */
@@ -79,6 +87,9 @@ int biref_render_shade_pixel(const biref_renderer *r, const double dir[3], const
 const render_slab *biref_render_nearest_slab(const biref_renderer *r, const double dir[3], double *t);
 /* A pixel that hits no slab: the background through the filter. */
 void biref_render_background(const biref_renderer *r, const double dir[3], double xyz[3]);
+/* The background's pass-through factor of the paper's light model (not world-fixed): the same for
+ * every ray, and equal to biref_render_background's. */
+double biref_render_passthrough_sp(const biref_renderer *r);
 /* The slab's factors when its evaluation failed: a perfect mirror seen through the filter. */
 void biref_render_failed_hit(const biref_renderer *r, const biref_hit_frames *fr, double tT[3], double tR[3]);
 /* A slab pixel's colour at hit point hp from the slab's transmission and reflection factors. */
@@ -97,5 +108,12 @@ void biref_render_hit_frames(const double normal[3], const double tangent[3], co
  * dir + dx, dir + dy (the neighbouring samples) on the slab sl, in its transmission frame. */
 void biref_render_footprint(const biref_renderer *r, const render_slab *sl, const double dir[3], const double dx[3],
                             const double dy[3], biref_opl_footprint *fp);
+/* The same from the neighbouring samples' unit rays dir_x (right) and dir_y (below). */
+void biref_render_footprint_rays(const biref_renderer *r, const render_slab *sl, const double dir[3],
+                                 const double dir_x[3], const double dir_y[3], biref_opl_footprint *fp);
+/* The footprint of the sample at image point (fx, fy) (camera ray dir) whose neighbouring
+ * samples lie h pixels to the right and below (sample_pixel's strata, render.c). */
+void biref_render_sample_footprint(const biref_renderer *r, const render_slab *sl, double fx, double fy, double h,
+                                   const double dir[3], biref_opl_footprint *fp);
 
 #endif

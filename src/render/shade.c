@@ -5,11 +5,9 @@
 #include <string.h>
 
 #include "optics/slab_internal.h"
+#include "render/radiance.h"
 #include "render/render_internal.h"
 #include "render/vec3.h"
-
-/* Rays leave surfaces from exactly on them; hits closer than this are the surface itself. */
-#define RAY_EPS 1e-9
 
 void biref_render_env_init(render_env *e, const biref_environment *env)
 {
@@ -27,56 +25,9 @@ void biref_render_env_init(render_env *e, const biref_environment *env)
     e->check_size = env->check_size;
 }
 
-static void mix3(const double a[3], const double b[3], double t, double o[3])
-{
-    for (int i = 0; i < 3; i++) o[i] = a[i] + (b[i] - a[i]) * t;
-}
-
-static void env_radiance(const render_env *e, const double d[3], double xyz[3])
-{
-    double el = v3_dot(d, e->up);
-    if (el >= 0.0) {
-        /* sqrt keeps the sky pale near the horizon and saturated overhead. */
-        mix3(e->horizon, e->zenith, sqrt(fmin(el, 1.0)), xyz);
-        return;
-    }
-    /* Below the horizon the ground fades in over the first ~7 degrees; the haze also hides
-     * the checker's aliasing where its tiles shrink below a pixel. */
-    double g = fmin(1.0, -el * 8.0);
-    const double *ground = e->ground;
-    if (e->type == BIREF_ENV_CHECKER && g > 1e-3) {
-        /* The ground is a plane one unit below the eye; tiles are check_size units wide. */
-        double s = 1.0 / (-el * e->check_size);
-        double u = floor(v3_dot(d, e->e1) * s), w = floor(v3_dot(d, e->e2) * s);
-        ground = fabs(fmod(u + w, 2.0)) >= 1.0 ? e->check_b : e->check_a;
-    }
-    mix3(e->horizon, ground, g, xyz);
-}
-
 void biref_render_radiance(const biref_renderer *r, const double from[3], const double dir[3], double xyz[3])
 {
-    double best = INFINITY;
-    const render_panel *hit = NULL;
-    for (int i = 0; i < r->n_panels; i++) {
-        const render_panel *p = &r->panels[i];
-        double dn = v3_dot(dir, p->normal);
-        if (fabs(dn) < 1e-12) continue;
-        double rel[3];
-        v3_sub(p->center, from, rel);
-        double t = v3_dot(rel, p->normal) / dn;
-        if (!(t > RAY_EPS) || t >= best) continue;
-        double q[3];
-        v3_axpy(from, t, dir, q);
-        v3_sub(q, p->center, q);
-        if (fabs(v3_dot(q, p->tangent)) <= p->half_w && fabs(v3_dot(q, p->bitangent)) <= p->half_h) {
-            best = t;
-            hit = p;
-        }
-    }
-    if (hit)
-        memcpy(xyz, hit->radiance_xyz, 3 * sizeof(double));
-    else
-        env_radiance(&r->env, dir, xyz);
+    render_radiance(r, from, dir, xyz);
 }
 
 /* Coherency matrix of the incident light in the basis (s, p_in) of a wave travelling along
@@ -178,6 +129,17 @@ static double background_factor(const biref_renderer *r, const double k[3], cons
     return passthrough(C, P);
 }
 
+double biref_render_passthrough_sp(const biref_renderer *r)
+{
+    /* Without a world-fixed polarizer C and P are diagonal in every wave's own basis, so any
+     * basis gives background_factor's value, to the bit. */
+    static const double s[3] = {1, 0, 0}, p[3] = {0, 1, 0};
+    double C[2][2], P[2][2];
+    light_coherency(r, s, p, C);
+    analyzer(r, s, p, P);
+    return passthrough(C, P);
+}
+
 /* The slab's two evaluations, the phase integrals averaged over the footprint fpT (in the
  * transmission frame; NULL: point look-ups). */
 static int shade_hit(const biref_renderer *r, const biref_hit_frames *f, const biref_opl_footprint *fpT,
@@ -206,21 +168,13 @@ int biref_render_shade_hit(const biref_renderer *r, const biref_hit_frames *f, d
 
 const render_slab *biref_render_nearest_slab(const biref_renderer *r, const double dir[3], double *t_hit)
 {
-    const double *o = r->cam.origin;
     double best = INFINITY;
     const render_slab *hit = NULL;
     for (int i = 0; i < r->n_slabs; i++) {
         const render_slab *sl = &r->slabs[i];
-        double dn = v3_dot(dir, sl->normal);
-        if (fabs(dn) < 1e-12) continue; /* edge-on: a thin slab is invisible */
-        double rel[3];
-        v3_sub(sl->center, o, rel);
-        double t = v3_dot(rel, sl->normal) / dn;
-        if (!(t > RAY_EPS) || t >= best) continue;
-        double q[3];
-        v3_axpy(o, t, dir, q);
-        v3_sub(q, sl->center, q);
-        if (fabs(v3_dot(q, sl->tangent)) <= sl->half_w && fabs(v3_dot(q, sl->bitangent)) <= sl->half_h) {
+        const double t = render_rect_hit(sl->center, sl->normal, sl->tangent, sl->bitangent, sl->half_w, sl->half_h,
+                                         r->cam.origin, dir, best);
+        if (t > 0.0) {
             best = t;
             hit = sl;
         }

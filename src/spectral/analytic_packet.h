@@ -19,6 +19,7 @@
 
 #include "biref/optics.h"
 #include "biref/spectral.h"
+#include "spectral/phase_prefilter.h"
 
 /* One lane's job: the state, whether to read it lit from its other face (biref_slab_state_flip's
  * relabelling, done while gathering) and which direction's result to return. */
@@ -43,20 +44,23 @@ typedef struct {
 /* T[k] and R[k] as biref_integrate_hits gives them (transmission of the hit's state, reflection
  * of its flip), up to rounding, for the hits whose scalar[k] is 0; scalar[k] = 1 marks a hit the
  * kernel cannot take (an evanescent mode, the optic-axis degeneracy, a near-singular interface
- * system, the coherent regime): its T and R are undefined and it goes to the scalar path. */
+ * system, the coherent regime): its T and R are undefined and it goes to the scalar path.
+ * fp: NULL for point look-ups, else one footprint per hit (all of one prefilter, fp[k].pf the
+ * same non-NULL table): every phase integral is then its box average over the hit's footprint,
+ * as biref_integrate_footprint gives it (transmission with fp[k], reflection with its flip). */
 typedef void (*biref_packet_hits_kernel)(const biref_spectral *sp, const double w_in[2], const double mask[2],
                                          const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
-                                         unsigned char *scalar);
+                                         unsigned char *scalar, const biref_opl_footprint *fp);
 
 void biref_packet_hits_baseline(const biref_spectral *sp, const double w_in[2], const double mask[2],
                                 const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
-                                unsigned char *scalar);
+                                unsigned char *scalar, const biref_opl_footprint *fp);
 void biref_packet_hits_avx2(const biref_spectral *sp, const double w_in[2], const double mask[2],
                             const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
-                            unsigned char *scalar);
+                            unsigned char *scalar, const biref_opl_footprint *fp);
 void biref_packet_hits_avx512(const biref_spectral *sp, const double w_in[2], const double mask[2],
                               const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
-                              unsigned char *scalar);
+                              unsigned char *scalar, const biref_opl_footprint *fp);
 
 void biref_packet_analytic_baseline(const biref_spectral *sp, const double w_in[2], const double mask[2],
                                     const biref_packet_job *jobs, size_t n, double (*xyz)[3]);

@@ -16,12 +16,11 @@
 
 /* Same quadrature as the point table (midpoint rule, relative error (phi' h)^2 / 24). */
 #define BUILD_DLAMBDA_NM 0.05
-/* Below this width the box average and the point value differ by < (2 pi w / 380 nm)^2 / 24 < 1e-8. */
-#define POINT_WIDTH_NM 1e-3
 
 struct biref_phase_prefilter {
     const biref_spectral *sp;
     double *table; /* [m][band][re, im, dre/dD, dim/dD] of q(D) = e^{-2 pi i nu_c D} Q(D) */
+    double *packet_table; /* the same for the packet kernel (biref_table_packet_layout) */
 };
 
 /* Nodes per block of the parallel build. */
@@ -96,6 +95,13 @@ biref_status biref_phase_prefilter_create(const biref_spectral *sp, biref_phase_
         biref_phase_prefilter_destroy(pf);
         return BIREF_ERR_NOMEM;
     }
+    /* Aligned for the kernel's whole-vector loads (as the point table's copy, spectral_context.c). */
+    pf->packet_table = aligned_alloc(64, (size_t)sp->nodes * BIREF_PACKET_TABLE_STRIDE * sizeof *pf->packet_table);
+    if (!pf->packet_table) {
+        biref_phase_prefilter_destroy(pf);
+        return BIREF_ERR_NOMEM;
+    }
+    biref_table_packet_layout(pf->table, sp->carrier, sp->nodes, pf->packet_table);
     *out = pf;
     return BIREF_OK;
 }
@@ -104,8 +110,11 @@ void biref_phase_prefilter_destroy(biref_phase_prefilter *pf)
 {
     if (!pf) return;
     free(pf->table);
+    free(pf->packet_table);
     free(pf);
 }
+
+const double *biref_phase_prefilter_packet_table(const biref_phase_prefilter *pf) { return pf->packet_table; }
 
 /* Q_j(D) for D >= 0. */
 static void antiderivative(const biref_phase_prefilter *pf, double d, double complex q[3])
@@ -133,7 +142,7 @@ static void antiderivative_signed(const biref_phase_prefilter *pf, double d, dou
 void biref_phase_integrals_box(const biref_phase_prefilter *pf, double opd, double width, double c[3], double s[3])
 {
     width = fabs(width);
-    if (!(width > POINT_WIDTH_NM)) {
+    if (!(width > BIREF_PREFILTER_POINT_WIDTH_NM)) {
         biref_spectral_phase_integrals(pf->sp, opd, c, s);
         return;
     }

@@ -12,6 +12,14 @@ typedef struct biref_phase_prefilter biref_phase_prefilter;
 biref_status biref_phase_prefilter_create(const biref_spectral *sp, biref_phase_prefilter **out);
 void biref_phase_prefilter_destroy(biref_phase_prefilter *pf);
 
+/* The antiderivative table in the packet kernel's layout (biref_table_packet_layout, the
+ * carriers of the point table inside), for its prefiltered look-ups (analytic_packet_kernel.inc). */
+const double *biref_phase_prefilter_packet_table(const biref_phase_prefilter *pf);
+
+/* Below this width the box average and the point value differ by < (2 pi w / 380 nm)^2 / 24 < 1e-8:
+ * the point look-up is used (one table evaluation instead of two, and no cancellation). */
+#define BIREF_PREFILTER_POINT_WIDTH_NM 1e-3
+
 /* Box averages over [opd - width/2, opd + width/2] of S(cos kD) and S(sin kD) per band; width <= a
  * tiny threshold gives the point values of biref_spectral_phase_integrals. */
 void biref_phase_integrals_box(const biref_phase_prefilter *pf, double opd_nm, double width_nm, double c[3],

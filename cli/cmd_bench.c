@@ -13,6 +13,7 @@
 #include "cli_gl.h"
 #include "cli_opts.h"
 #include "cli_render.h"
+#include "cli_values.h"
 #include "commands.h"
 #include "json_out.h"
 
@@ -102,14 +103,16 @@ typedef struct {
     long width, height, threads, frames;
     double max_seconds;
     int json, gl;
+    int prefilter; /* --antialias prefilter: the analytic and expansion methods prefiltered */
 } bench_args;
 
-enum { OPT_BACKEND = 1, OPT_MAX_SECONDS };
+enum { OPT_BACKEND = 1, OPT_MAX_SECONDS, OPT_ANTIALIAS };
 
 static int handle(void *args, int code, const char *arg)
 {
     bench_args *a = args;
     if (code == OPT_BACKEND) return cli_parse_backend(CMD, arg, &a->gl);
+    if (code == OPT_ANTIALIAS) return cli_parse_antialias(CMD, arg, &a->prefilter);
     if (cli_parse_double(CMD, "--max-seconds", arg, &a->max_seconds)) return -1;
     if (!(a->max_seconds > 0)) return cli_error(CMD, "--max-seconds: must be positive"), -1;
     return 0;
@@ -127,12 +130,16 @@ static const cli_opt OPTS[] = {
                "(default " DEFAULT_METHODS ")"),
     CLI_CUSTOM("max-seconds", "S", OPT_MAX_SECONDS, "time budget per method before extrapolating (default 10)"),
     CLI_INT("threads", "T", F(threads), 1, 1024, "OpenMP threads (default: all cores)"),
+    CLI_CUSTOM("antialias", "A", OPT_ANTIALIAS,
+               "none (default): point look-ups; prefilter: the analytic and expansion methods\n"
+               "average the phase integrals over each pixel's footprint, as render's default\n"
+               "(docs/ANTIALIASING.md)"),
     CLI_CUSTOM("backend", "B", OPT_BACKEND,
                "cpu (default) or gl: also time the analytic method as a GLSL shader\n"
                "(GPU time from timer queries, median of --frames frames; docs/GPU.md)"),
     CLI_INT("frames", "N", F(frames), 1, 1000, "gl: frames timed after one warm-up (default 5)"),
     CLI_FLAG("json", 0, F(json),
-             "{width, height, threads, methods: [{method, ms_per_frame,\n"
+             "{width, height, threads, antialias, methods: [{method, ms_per_frame,\n"
              "ns_per_pixel, extrapolated, rows_timed, cpu_ms_per_frame}]}"),
 };
 #undef F
@@ -212,6 +219,7 @@ static int print_json(const bench_args *a, int W, int H, int n_threads, const be
     cJSON_AddNumberToObject(root, "width", W);
     cJSON_AddNumberToObject(root, "height", H);
     cJSON_AddNumberToObject(root, "threads", n_threads);
+    cJSON_AddStringToObject(root, "antialias", a->prefilter ? "prefilter" : "none");
     cJSON *arr = cJSON_AddArrayToObject(root, "methods");
     for (int i = 0; i < n_methods; i++) {
         cJSON *o = cJSON_CreateObject();
@@ -282,7 +290,7 @@ static void print_table(const bench_args *a, int W, int H, int n_threads, const 
 
 int cmd_bench(int argc, char **argv)
 {
-    bench_args a = {NULL, DEFAULT_METHODS, 1920, 1080, 0, 5, 10.0, 0, 0};
+    bench_args a = {NULL, DEFAULT_METHODS, 1920, 1080, 0, 5, 10.0, 0, 0, 0};
     cli_parsed p;
     int r = cli_opts_parse(&CLI_BENCH, &a, argc, argv, &p);
     if (r) return r > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
@@ -290,6 +298,9 @@ int cmd_bench(int argc, char **argv)
     bench_method m[MAX_METHODS];
     int n_methods = 0;
     if (parse_methods(a.methods, m, &n_methods)) return CLI_EXIT_USAGE;
+    for (int i = 0; i < n_methods; i++)
+        if (a.prefilter && (m[i].opt.method == BIREF_METHOD_ANALYTIC || m[i].opt.method == BIREF_METHOD_EXPANSION))
+            m[i].opt.antialias = BIREF_ANTIALIAS_PREFILTER;
     biref_scene scene;
     char default_scene[4096];
     if (!a.scene_path) a.scene_path = cli_data_path("examples/fig9a.json", default_scene, sizeof default_scene);

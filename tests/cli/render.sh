@@ -129,6 +129,7 @@ expect_ok "bench json" bench --scene "$good" --width 32 --height 18 --methods an
 for key in width height threads methods method ms_per_frame ns_per_pixel extrapolated; do
   expect_grep "bench key $key" "\"$key\":"
 done
+expect_grep "bench antialias none by default" '"antialias":[[:space:]]*"none"'
 expect_ok "bench extrapolates" bench --scene "$good" --width 32 --height 18 --methods ground-truth \
   --max-seconds 0.001 --json
 expect_grep "bench extrapolated true" '"extrapolated":[[:space:]]*true'
@@ -138,4 +139,9 @@ expect_error "bench bad method" bench --scene "$good" --methods analytic,numeric
 expect_error "bench unknown method" bench --scene "$good" --methods fast
 expect_error "bench empty method" bench --scene "$good" --methods analytic,,numeric-8
 expect_error "bench bad budget" bench --scene "$good" --max-seconds 0
+# --antialias: the prefiltered analytic method times (numeric methods keep point look-ups).
+expect_ok "bench prefilter" bench --scene "$good" --width 32 --height 18 --methods analytic,numeric-8 \
+  --antialias prefilter --json
+expect_grep "bench antialias prefilter" '"antialias":[[:space:]]*"prefilter"'
+expect_error "bench bad antialias" bench --scene "$good" --antialias box
 finish

@@ -296,7 +296,7 @@ static void renders_per_isa(biref_antialias aa)
             float *a = render_with(scenes[i], name, aa, 2, W, H);
             CHECK(a != NULL);
             if (a && i < 2) { /* fig9a and the thick slab at grazing view */
-                /* The same image on one thread (other packets: hits are grouped per row). */
+                /* The same image on one thread (other packets: hits are grouped per tile of a row). */
                 float *b = render_with(scenes[i], name, aa, 1, W, H);
                 CHECK(b && memcmp(a, b, n * 3 * sizeof *a) == 0);
                 free(b);

@@ -41,7 +41,7 @@ typedef struct {
     double eta_o, eta_e, axis[3], thickness_nm, eta_i, K;
 } biref_packet_hit;
 
-/* T[k] and R[k] as biref_integrate_hits gives them (transmission of the hit's state, reflection
+/* T[k] and R[k] as biref_integrate_hit gives them (transmission of the hit's state, reflection
  * of its flip), up to rounding, for the hits whose scalar[k] is 0; scalar[k] = 1 marks a hit the
  * kernel cannot take (an evanescent mode, the optic-axis degeneracy, a near-singular interface
  * system, the coherent regime): its T and R are undefined and it goes to the scalar path.

@@ -304,15 +304,6 @@ static biref_status scalar_hit(const biref_integrator *it, const biref_slab_stat
     return s;
 }
 
-/* One hit the scalar way. */
-static biref_status scalar_slab_hit(const biref_integrator *it, const biref_slab_hit *h, const biref_opl_footprint *fp,
-                                    const biref_light *light, double T[3], double R[3])
-{
-    biref_slab_state st;
-    biref_status s = biref_slab_prepare_trusted(&h->slab, h->theta, &st);
-    return s != BIREF_OK ? s : scalar_hit(it, &st, fp, light, T, R);
-}
-
 /* Can the packet kernel take these footprints? All of one prefilter (the kernel reads one table). */
 static int one_prefilter(const biref_opl_footprint *fp, size_t n)
 {
@@ -321,15 +312,9 @@ static int one_prefilter(const biref_opl_footprint *fp, size_t n)
     return 1;
 }
 
-void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_hit *hits, size_t n,
-                                 const biref_light *light, double (*T)[3], double (*R)[3], unsigned char *scalar)
-{
-    biref_integrate_packet_hits_footprint(it, hits, NULL, n, light, T, R, scalar);
-}
-
-void biref_integrate_packet_hits_footprint(const biref_integrator *it, const biref_packet_hit *hits,
-                                           const biref_opl_footprint *fp, size_t n, const biref_light *light,
-                                           double (*T)[3], double (*R)[3], unsigned char *scalar)
+void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_hit *hits,
+                                 const biref_opl_footprint *fp, size_t n, const biref_light *light, double (*T)[3],
+                                 double (*R)[3], unsigned char *scalar)
 {
     if (it->hits && light->sp_model && (!fp || one_prefilter(fp, n)))
         it->hits(it->sp, light->w_in, light->mask, hits, n, T, R, scalar, fp);
@@ -337,40 +322,10 @@ void biref_integrate_packet_hits_footprint(const biref_integrator *it, const bir
         memset(scalar, 1, n);
 }
 
-biref_status biref_integrate_hit(const biref_integrator *it, const biref_slab_hit *hit, const biref_light *light,
-                                 double T[3], double R[3])
+biref_status biref_integrate_hit(const biref_integrator *it, const biref_slab_hit *hit, const biref_opl_footprint *fp,
+                                 const biref_light *light, double T[3], double R[3])
 {
-    return scalar_slab_hit(it, hit, NULL, light, T, R);
-}
-
-biref_status biref_integrate_hit_footprint(const biref_integrator *it, const biref_slab_hit *hit,
-                                           const biref_opl_footprint *fp, const biref_light *light, double T[3],
-                                           double R[3])
-{
-    return scalar_slab_hit(it, hit, fp, light, T, R);
-}
-
-void biref_integrate_hits(const biref_integrator *it, const biref_slab_hit *hits, size_t n, const biref_light *light,
-                          double (*T)[3], double (*R)[3], biref_status *status)
-{
-    const int packets = it->hits && light->sp_model;
-    biref_packet_hit ph[PACKET_CHUNK];
-    unsigned char scalar[PACKET_CHUNK];
-    for (size_t k0 = 0; k0 < n; k0 += PACKET_CHUNK) {
-        const size_t m = n - k0 < PACKET_CHUNK ? n - k0 : PACKET_CHUNK;
-        if (packets) {
-            for (size_t k = 0; k < m; k++) {
-                const biref_slab *s = &hits[k0 + k].slab;
-                ph[k] = (biref_packet_hit){s->eta_o, s->eta_e, {s->axis[0], s->axis[1], s->axis[2]}, s->thickness_nm,
-                                           s->eta_i, s->eta_i * sin(hits[k0 + k].theta)}; /* eq. 1, as slab.c */
-            }
-            it->hits(it->sp, light->w_in, light->mask, ph, m, T + k0, R + k0, scalar, NULL);
-        }
-        for (size_t k = k0; k < k0 + m; k++) {
-            if (!packets || scalar[k - k0])
-                status[k] = scalar_slab_hit(it, &hits[k], NULL, light, T[k], R[k]);
-            else
-                status[k] = finite3(T[k]) && finite3(R[k]) ? BIREF_OK : BIREF_ERR_ILLCOND;
-        }
-    }
+    biref_slab_state st;
+    biref_status s = biref_slab_prepare_trusted(&hit->slab, hit->theta, &st);
+    return s != BIREF_OK ? s : scalar_hit(it, &st, fp, light, T, R);
 }

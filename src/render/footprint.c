@@ -41,12 +41,3 @@ void biref_render_footprint(const biref_renderer *r, const render_slab *sl, cons
     v3_normalize(d[1], d[1]);
     biref_render_footprint_rays(r, sl, dir, d[0], d[1], fp);
 }
-
-void biref_render_sample_footprint(const biref_renderer *r, const render_slab *sl, double fx, double fy, double h,
-                                   const double dir[3], biref_opl_footprint *fp)
-{
-    double d[2][3];
-    biref_render_camera_ray_at(&r->cam, fx + h, fy, d[0]);
-    biref_render_camera_ray_at(&r->cam, fx, fy + h, d[1]);
-    biref_render_footprint_rays(r, sl, dir, d[0], d[1], fp);
-}

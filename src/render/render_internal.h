@@ -111,9 +111,5 @@ void biref_render_footprint(const biref_renderer *r, const render_slab *sl, cons
 /* The same from the neighbouring samples' unit rays dir_x (right) and dir_y (below). */
 void biref_render_footprint_rays(const biref_renderer *r, const render_slab *sl, const double dir[3],
                                  const double dir_x[3], const double dir_y[3], biref_opl_footprint *fp);
-/* The footprint of the sample at image point (fx, fy) (camera ray dir) whose neighbouring
- * samples lie h pixels to the right and below (sample_pixel's strata, render.c). */
-void biref_render_sample_footprint(const biref_renderer *r, const render_slab *sl, double fx, double fy, double h,
-                                   const double dir[3], biref_opl_footprint *fp);
 
 #endif

@@ -41,11 +41,3 @@ int cli_check_writable(const char *cmd, const char *path)
     if (biref_outfile_check(path, msg, sizeof msg) != BIREF_OK) return cli_error(cmd, "%s", msg), CLI_EXIT_FAIL;
     return 0;
 }
-
-int cli_check_output(const char *cmd, const char *out, const char *const *inputs, int n_inputs)
-{
-    for (int i = 0; i < n_inputs; i++)
-        if (inputs[i] && biref_outfile_is_file(out, inputs[i]))
-            return cli_error(cmd, "%s: output would overwrite the input file %s", out, inputs[i]), CLI_EXIT_USAGE;
-    return cli_check_writable(cmd, out);
-}

@@ -19,7 +19,5 @@ int cli_renderer_create(const char *cmd, const biref_scene *scene, const biref_r
 /* Checks before a long computation that PATH's directory exists and is writable, so the user
  * learns about a typo immediately; the write itself is still checked. Returns 0 if fine. */
 int cli_check_writable(const char *cmd, const char *path);
-/* The same, and refuses (CLI_EXIT_USAGE) an output that is one of the command's input files. */
-int cli_check_output(const char *cmd, const char *out, const char *const *inputs, int n_inputs);
 
 #endif

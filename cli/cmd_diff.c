@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_files.h"
 #include "cli_render.h"
 #include "de_scale.h"
 #include "commands.h"
@@ -64,8 +65,13 @@ int cmd_diff(int argc, char **argv)
     if (argc - first_arg < 2) return cli_error(CMD, "expected two images A.png B.png (see biref diff --help)"), CLI_EXIT_USAGE;
     if (argc - first_arg > 2) return cli_error(CMD, "unexpected argument '%s'", argv[first_arg + 2]), CLI_EXIT_USAGE;
     const char *pa = argv[first_arg], *pb = argv[first_arg + 1];
-    const char *inputs[2] = {pa, pb};
-    int rc_out = out ? cli_check_output(CMD, out, inputs, 2) : 0;
+    cli_files files;
+    cli_files_init(&files);
+    cli_files_read(&files, "A", pa);
+    cli_files_read(&files, "B", pb);
+    cli_files_write(&files, "-o", "png", out);
+    int rc_out = cli_files_check(CMD, &files);
+    cli_files_free(&files);
     if (rc_out) return rc_out;
 
     char msg[600];

@@ -15,6 +15,7 @@
 #include "biref/render.h"
 #include "cli_common.h"
 #include "cli_data.h"
+#include "cli_files.h"
 #include "commands.h"
 #include "de_scale.h"
 #include "fig_aliasing.h"
@@ -308,6 +309,40 @@ static int check_scenes(const char *scenes, int fig9_on, int table1_on)
     return 0;
 }
 
+/* What each figure reads (relative to --scenes) and writes (in DIR), checked against each other
+ * before the first figure is computed (docs/CLI.md, "Files"). */
+static const struct {
+    const char *reads[3], *writes[4];
+} FIGURE_FILES[] = {
+    {{NULL}, {"fig5.csv", "fig5.png"}},
+    {{NULL}, {"fig6c.csv", "fig6c.png"}},
+    {{NULL}, {"fig7.csv", "fig7.png"}},
+    {{"fig9a.json", "fig9b.json", "fig9c.json"}, {"fig9.csv", "fig9_a.png", "fig9_b.png", "fig9_c.png"}},
+    {{"fig9a.json"}, {"table1.csv", "table1.md"}},
+    {{"fig9c.json", "aliasing/thick_grazing.json"}, {"aliasing.csv", "aliasing.png"}},
+};
+
+static int check_files(const char *dir, const char *scenes, const int *sel, int n)
+{
+    cli_files files;
+    cli_files_init(&files);
+    for (int i = 0; i < n; i++) {
+        if (!sel[i]) continue;
+        for (int k = 0; k < 3 && FIGURE_FILES[i].reads[k]; k++) {
+            char path[4096];
+            snprintf(path, sizeof path, "%s/%s", scenes, FIGURE_FILES[i].reads[k]);
+            cli_files_read(&files, "--scenes", path);
+        }
+        for (int k = 0; k < 4 && FIGURE_FILES[i].writes[k]; k++) {
+            const char *name = FIGURE_FILES[i].writes[k];
+            cli_files_write_in_dir(&files, "-o", strrchr(name, '.') + 1, dir, name);
+        }
+    }
+    int rc = cli_files_check(FIG_CMD, &files);
+    cli_files_free(&files);
+    return rc;
+}
+
 /* The command line, parsed. */
 typedef struct {
     const char *dir, *scenes;
@@ -377,6 +412,7 @@ int cmd_figure(int argc, char **argv)
     if (!c.dir) return cli_error(FIG_CMD, "missing -o DIR"), CLI_EXIT_USAGE;
     /* Everything the figures read is checked before the first one is computed. */
     if ((sel[3] || sel[4]) && check_scenes(scenes, sel[3], sel[4])) return CLI_EXIT_USAGE;
+    if ((r = check_files(c.dir, scenes, sel, NFIG))) return r;
     if (prepare_dir(c.dir)) return CLI_EXIT_FAIL;
     if (c.threads > 0) omp_set_num_threads(c.threads);
 

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_files.h"
 #include "cli_render.h"
 #include "commands.h"
 #include "outfile.h"
@@ -76,7 +77,12 @@ int cmd_gl_data(int argc, char **argv)
     const int first_arg = parsed.first_arg;
     if (!out) return cli_error(CMD, "missing -o FILE.js"), CLI_EXIT_USAGE;
     if (first_arg >= argc) return cli_error(CMD, "missing SCENE.json (see biref gl-data --help)"), CLI_EXIT_USAGE;
-    int rc = cli_check_writable(CMD, out);
+    cli_files files;
+    cli_files_init(&files);
+    for (int i = first_arg; i < argc; i++) cli_files_read(&files, "SCENE", argv[i]);
+    cli_files_write(&files, "-o", "js", out);
+    int rc = cli_files_check(CMD, &files);
+    cli_files_free(&files);
     if (rc) return rc;
     biref_spectral *sp = NULL;
     char why[BIREF_MSG_SIZE];

@@ -135,8 +135,13 @@ static int prepare(pe_args *a, pe_run *run)
         run->tint_rgb[i] = io->tint[i];
         io->tint[i] *= a->exposure;
     }
-    const char *inputs[3] = {a->grid_path, a->ext.nodes_path, a->ext.boundary_path};
-    if (a->out && (rc = cli_check_output(CMD, a->out, inputs, 3))) return rc;
+    cli_files files;
+    cli_files_init(&files);
+    cli_files_read(&files, "--stress-grid", a->grid_path);
+    pe_ext_files(&a->ext, a->out, &files);
+    rc = cli_files_check(CMD, &files);
+    cli_files_free(&files);
+    if (rc) return rc;
     char why[BIREF_MSG_SIZE];
     if (a->light == BIREF_PE_WHITE && biref_spectral_create(NULL, &run->sp, why, sizeof why) != BIREF_OK)
         return cli_error(CMD, "cannot create the spectral tables: %s", why), CLI_EXIT_FAIL;

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "chroma_map.h"
+#include "cli_files.h"
 #include "cli_gl.h"
 #include "cli_opts.h"
 #include "cli_polarizer.h"
@@ -261,10 +262,15 @@ int cmd_render(int argc, char **argv)
     if (!rc) rc = cli_scene_resize(CMD, &scene, a.width, a.height);
     if (rc) return rc;
     /* Fail on a bad output path before rendering for seconds, not after. */
-    const char *inputs[2] = {a.scene_path, a.out};
-    if ((rc = cli_check_output(CMD, a.out, inputs, 1)) || (a.pfm && (rc = cli_check_output(CMD, a.pfm, inputs, 2))) ||
-        (a.chroma && (rc = cli_check_output(CMD, a.chroma, inputs, 2))))
-        return rc;
+    cli_files files;
+    cli_files_init(&files);
+    cli_files_read(&files, "SCENE", a.scene_path);
+    cli_files_write(&files, "-o", "png", a.out);
+    cli_files_write(&files, "--pfm", "pfm", a.pfm);
+    cli_files_write(&files, "--chroma-map", "png", a.chroma);
+    rc = cli_files_check(CMD, &files);
+    cli_files_free(&files);
+    if (rc) return rc;
     render_result res = {.W = scene.camera.width, .H = scene.camera.height};
     const size_t n = (size_t)res.W * res.H;
     float *xyz = malloc(n * 3 * sizeof *xyz);

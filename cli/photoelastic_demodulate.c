@@ -189,8 +189,20 @@ int cmd_photoelastic_demodulate(int argc, char **argv)
     demod_args a;
     int r = parse(argc, argv, &a);
     if (r) return r > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
+    cli_files files;
+    cli_files_init(&files);
+    for (int k = 0; k < a.n; k++) cli_files_read(&files, "IMAGE", a.images[k]);
+    for (int m = 0; m < 5; m++) {
+        char name[64];
+        snprintf(name, sizeof name, "%s.%s", MAP_NAMES[m], a.csv ? "csv" : "pfm");
+        cli_files_write_in_dir(&files, "-o", a.csv ? "csv" : "pfm", a.dir, name);
+    }
+    int rc = cli_files_check(CMD, &files);
+    cli_files_free(&files);
+    if (rc) return rc;
     float *img[6] = {0}, *maps[5] = {0};
-    int W = 0, H = 0, rc = read_images(&a, img, &W, &H);
+    int W = 0, H = 0;
+    rc = read_images(&a, img, &W, &H);
     for (int m = 0; m < 5 && !rc; m++)
         if (!(maps[m] = malloc((size_t)W * H * sizeof(float)))) rc = (cli_error(CMD, "out of memory"), CLI_EXIT_FAIL);
     if (!rc) rc = demodulate(&a, img, W, H, maps);

@@ -6,6 +6,7 @@
 
 #include <cjson/cJSON.h>
 #include "cli_common.h"
+#include "cli_files.h"
 
 enum {
     OPT_PE_NODES = 3100,
@@ -62,6 +63,10 @@ int pe_ext_owns_output(const pe_ext *e);
 int pe_ext_write(const pe_ext *e, const pe_ext_ctx *c);
 /* The PNG picture, with --key and --scale-bar drawn by cairo if asked; returns a CLI exit code. */
 int pe_ext_write_png(const pe_ext *e, const pe_ext_ctx *c, const unsigned char *rgb);
+
+/* Adds the files the options read and the outputs of -o OUT (a picture, a map or the images of
+ * a phase-stepped set) for the check of cli_files.h. */
+void pe_ext_files(const pe_ext *e, const char *out, cli_files *f);
 
 /* Adds the node counts (rows, distinct nodes, triangles, boundary polygons) to a JSON report. */
 void pe_ext_json(const pe_ext *e, cJSON *root);

@@ -123,6 +123,21 @@ static void step_name(char *buf, size_t n, const char *out, int k)
     snprintf(buf, n, "%.*s-%d%s", (int)(dot - out), out, k, dot);
 }
 
+void pe_ext_files(const pe_ext *e, const char *out, cli_files *f)
+{
+    cli_files_read(f, "--stress-nodes", e->nodes_path);
+    cli_files_read(f, "--boundary", e->boundary_path);
+    if (!out) return;
+    /* Maps and phase steps say which extensions they take (pe_ext_write). */
+    if (!e->phase_steps) cli_files_write(f, "-o", e->map >= 0 ? NULL : e->pfm ? "pfm" : "png", out);
+    for (int k = 1; k <= e->phase_steps; k++) {
+        char path[4096], what[64];
+        step_name(path, sizeof path, out, k);
+        snprintf(what, sizeof what, "-o with --phase-steps, image %d", k);
+        cli_files_write(f, what, NULL, path);
+    }
+}
+
 static int write_phase_steps(const pe_ext *e, const pe_ext_ctx *c)
 {
     const int W = c->io->width, H = c->io->height, n = e->phase_steps;

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "cli_common.h"
+#include "cli_files.h"
 #include "outfile.h"
 #include "json_out.h"
 #include "study.h"
@@ -39,6 +40,16 @@ int acc_options_finish(acc_options *o)
         if (stat(o->plot_dir, &sb) != 0 || !S_ISDIR(sb.st_mode))
             return cli_error(ACC_CMD, "--plot-dir: '%s' is not a directory", o->plot_dir), -1;
     }
+    cli_files files; /* every report against the materials file and each other */
+    cli_files_init(&files);
+    if (strcmp(o->materials, "fig9")) cli_files_read(&files, "--materials", o->materials);
+    cli_files_write(&files, "--csv", "csv", o->csv_path);
+    cli_files_write(&files, "--markdown", "md", o->md_path);
+    if (o->plot_dir) cli_files_write_in_dir(&files, "--plot-dir", "png", o->plot_dir, "accuracy_vs_theta.png");
+    if (o->plot_dir && o->cost) cli_files_write_in_dir(&files, "--plot-dir", "png", o->plot_dir, "accuracy_vs_cost.png");
+    const int rc = cli_files_check(ACC_CMD, &files);
+    cli_files_free(&files);
+    if (rc) return -1;
     /* The check defaults to 4x the reference: a midpoint rule that has converged changes by far
      * less than the error it had when the samples are quadrupled. */
     if (o->samples_check < 0) o->samples_check = o->samples_ref <= MAX_SAMPLES / 4 ? 4 * o->samples_ref : 0;

@@ -16,13 +16,42 @@ void cli_error(const char *cmd, const char *fmt, ...)
     va_end(ap);
 }
 
+/* The length of the decimal number at the start of s: [+-]digits[.digits][(e|E)[+-]digits], at
+ * least one digit before the exponent; 0 if none. strtod alone would also take leading blanks,
+ * hexadecimal ("0x10"), "inf" and "nan" (docs/CLI.md, "Numbers"). */
+static size_t decimal_length(const char *s, int integer)
+{
+    size_t i = 0, digits = 0;
+    if (s[i] == '+' || s[i] == '-') i++;
+    while (s[i] >= '0' && s[i] <= '9') i++, digits++;
+    if (integer) return digits ? i : 0;
+    if (s[i] == '.') {
+        i++;
+        while (s[i] >= '0' && s[i] <= '9') i++, digits++;
+    }
+    if (!digits) return 0;
+    if (s[i] == 'e' || s[i] == 'E') {
+        size_t j = i + 1, e = 0;
+        if (s[j] == '+' || s[j] == '-') j++;
+        while (s[j] >= '0' && s[j] <= '9') j++, e++;
+        if (e) i = j;
+    }
+    return i;
+}
+
+int cli_number_syntax_ok(const char *text, int integer)
+{
+    size_t n = decimal_length(text, integer);
+    return n > 0 && text[n] == '\0';
+}
+
 int cli_parse_double(const char *cmd, const char *opt, const char *text, double *out)
 {
     char *end = NULL;
     errno = 0;
     double v = strtod(text, &end);
-    if (end == text || *end != '\0' || errno == ERANGE || !isfinite(v)) {
-        cli_error(cmd, "%s: expected a finite number, got '%s'", opt, text);
+    if (!cli_number_syntax_ok(text, 0) || end == text || *end != '\0' || errno == ERANGE || !isfinite(v)) {
+        cli_error(cmd, "%s: expected a finite decimal number, got '%s'", opt, text);
         return -1;
     }
     *out = v;
@@ -34,7 +63,7 @@ int cli_parse_int(const char *cmd, const char *opt, const char *text, long lo, l
     char *end = NULL;
     errno = 0;
     long v = strtol(text, &end, 10);
-    if (end == text || *end != '\0' || errno == ERANGE) {
+    if (!cli_number_syntax_ok(text, 1) || end == text || *end != '\0' || errno == ERANGE) {
         cli_error(cmd, "%s: expected an integer, got '%s'", opt, text);
         return -1;
     }
@@ -61,8 +90,8 @@ int cli_parse_list(const char *cmd, const char *opt, const char *text, double *o
         char *end = NULL;
         errno = 0;
         double v = strtod(tok, &end);
-        if (end == tok || *end != '\0' || errno == ERANGE || !isfinite(v)) {
-            cli_error(cmd, "%s: expected %d comma-separated finite numbers, got '%s'", opt, n, text);
+        if (!cli_number_syntax_ok(tok, 0) || end == tok || *end != '\0' || errno == ERANGE || !isfinite(v)) {
+            cli_error(cmd, "%s: expected %d comma-separated finite decimal numbers, got '%s'", opt, n, text);
             return -1;
         }
         out[count++] = v;

@@ -15,7 +15,10 @@ enum { CLI_EXIT_OK = 0, CLI_EXIT_FAIL = 1, CLI_EXIT_USAGE = 2 };
 /* Prints "biref CMD: error: ..." as one line on stderr. */
 void cli_error(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
-/* Strict parsers: the whole string must be a finite number. Return 0 on success. */
+/* 1 if TEXT is a whole decimal number: [+-]digits[.digits][e[+-]digits] (integer: [+-]digits),
+ * no blanks, no hexadecimal, no inf or nan. */
+int cli_number_syntax_ok(const char *text, int integer);
+/* Strict parsers: the whole string must be a finite decimal number. Return 0 on success. */
 int cli_parse_double(const char *cmd, const char *opt, const char *text, double *out);
 int cli_parse_int(const char *cmd, const char *opt, const char *text, long lo, long hi, long *out);
 /* Parses n comma-separated finite numbers ("a,b,c"). */
@@ -53,6 +56,9 @@ enum {
         CLI_CUSTOM("thickness-nm", "D", OPT_THICKNESS_NM, "slab thickness in nanometres"),                  \
         CLI_CUSTOM("theta-deg", "A", OPT_THETA_DEG, "angle of incidence in degrees, 0 <= A < 90 (default 0)"), \
         CLI_CUSTOM("eta-i", "N", OPT_ETA_I, "index of the surrounding medium, both sides (default 1)")
+
+/* The slab options that exclude each other, for a command's cli_command_spec.exclusive. */
+#define CLI_SLAB_EXCLUSIVE "thickness-um thickness-mm thickness-nm"
 
 void cli_slab_opts_init(cli_slab_opts *o);
 /* Handles one slab option; returns 1 if handled, 0 if the code is not a slab option, -1 on error. */

@@ -49,6 +49,52 @@ static int store(const cli_command_spec *c, const cli_opt *o, void *args, const 
     }
 }
 
+/* 1 if NAME is one of the space-separated words of GROUP. */
+static int in_group(const char *group, const char *name)
+{
+    const size_t n = strlen(name);
+    for (const char *g = group; *g;) {
+        const char *end = strchr(g, ' ');
+        size_t len = end ? (size_t)(end - g) : strlen(g);
+        if (len == n && !strncmp(g, name, n)) return 1;
+        if (!end) break;
+        g = end + 1;
+    }
+    return 0;
+}
+
+/* An option given twice, or with another of its exclusive group: one error. Returns -1 then. */
+static int check_repeat(const cli_command_spec *c, const unsigned char *given, size_t i)
+{
+    const char *name = c->opts[i].name;
+    if (given[i]) {
+        char sh[8] = "";
+        if (c->opts[i].short_name) snprintf(sh, sizeof sh, "-%c/", c->opts[i].short_name);
+        return cli_error(c->name, "%s--%s given twice (see biref %s --help)", sh, name, c->name), -1;
+    }
+    for (const char *const *g = c->exclusive; g && *g; g++) {
+        if (!in_group(*g, name)) continue;
+        for (size_t j = 0; j < c->n_opts && j < CLI_MAX_OPTS; j++)
+            if (j != i && given[j] && in_group(*g, c->opts[j].name))
+                return cli_error(c->name, "--%s and --%s exclude each other", c->opts[j].name, name), -1;
+    }
+    return 0;
+}
+
+/* The text of the long option getopt_long just returned ("--name" or "--name=value"), which
+ * must spell the name whole: getopt_long would take any unambiguous prefix. */
+static int whole_name(const cli_command_spec *c, char **argv, const char *name)
+{
+    const char *text = optarg && optind >= 2 && optarg == argv[optind - 1] ? argv[optind - 2] : argv[optind - 1];
+    if (strncmp(text, "--", 2)) return 0;
+    const char *eq = strchr(text + 2, '=');
+    size_t len = eq ? (size_t)(eq - text - 2) : strlen(text + 2);
+    if (len == strlen(name) && !strncmp(text + 2, name, len)) return 0;
+    cli_error(c->name, "unknown option '%.*s' (did you mean --%s? see biref %s --help)", (int)len + 2, text, name,
+              c->name);
+    return -1;
+}
+
 int cli_opts_parse(const cli_command_spec *c, void *args, int argc, char **argv, cli_parsed *p)
 {
     struct option longopts[CLI_MAX_OPTS + 2];
@@ -69,26 +115,38 @@ int cli_opts_parse(const cli_command_spec *c, void *args, int argc, char **argv,
     longopts[nl] = (struct option){0, 0, 0, 0};
     shortopts[ns] = '\0';
     opterr = 0;
-    optind = 1;
-    int ch;
-    while ((ch = getopt_long(argc, argv, shortopts, longopts, NULL)) != -1) {
-        if (ch == 'h' || ch == CODE_HELP) {
-            cli_opts_help(c, stdout);
-            return 1;
+    /* Two passes: the structure of the command line first (unknown, abbreviated, repeated and
+     * excluding options, --help), then the values, so that a repeated option is reported as such
+     * whatever its values. optind = 0 makes getopt_long start afresh (GNU). */
+    for (int pass = 0; pass < 2; pass++) {
+        unsigned char seen[CLI_MAX_OPTS] = {0};
+        optind = 0;
+        int ch;
+        while ((ch = getopt_long(argc, argv, shortopts, longopts, NULL)) != -1) {
+            if (pass == 0 && (ch == CODE_HELP || ch >= CODE_BASE) &&
+                whole_name(c, argv, ch == CODE_HELP ? "help" : c->opts[ch - CODE_BASE].name))
+                return -1;
+            if (ch == 'h' || ch == CODE_HELP) {
+                cli_opts_help(c, stdout);
+                return 1;
+            }
+            size_t i = c->n_opts;
+            if (ch >= CODE_BASE) {
+                i = (size_t)(ch - CODE_BASE);
+            } else {
+                for (size_t j = 0; j < c->n_opts; j++)
+                    if (c->opts[j].kind != CLI_OPT_TEXT && c->opts[j].short_name && c->opts[j].short_name == ch) i = j;
+            }
+            if (i >= c->n_opts) {
+                cli_getopt_error(c->name, ch, argv);
+                return -1;
+            }
+            const size_t cur = current_index(c, i);
+            if (pass == 0 && check_repeat(c, seen, cur)) return -1;
+            if (pass == 1 && store(c, &c->opts[i], args, optarg)) return -1;
+            seen[cur] = 1;
         }
-        size_t i = c->n_opts;
-        if (ch >= CODE_BASE) {
-            i = (size_t)(ch - CODE_BASE);
-        } else {
-            for (size_t j = 0; j < c->n_opts; j++)
-                if (c->opts[j].kind != CLI_OPT_TEXT && c->opts[j].short_name && c->opts[j].short_name == ch) i = j;
-        }
-        if (i >= c->n_opts) {
-            cli_getopt_error(c->name, ch, argv);
-            return -1;
-        }
-        if (store(c, &c->opts[i], args, optarg)) return -1;
-        p->given[current_index(c, i)] = 1;
+        memcpy(p->given, seen, sizeof seen);
     }
     p->first_arg = optind;
     p->n_args = argc - optind;

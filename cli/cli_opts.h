@@ -40,6 +40,9 @@ typedef struct cli_command_spec {
     /* 1: a long job that reports progress on stderr; --help and docs/CLI.md then list the
      * --progress and -q/--quiet that main takes out of every command line (cli_progress.h). */
     int progress;
+    /* Options that exclude each other: NULL-terminated, each entry the long names of one group
+     * separated by spaces ("polarizer stokes polarization"); at most one of a group may be given. */
+    const char *const *exclusive;
 } cli_command_spec;
 
 enum { CLI_MAX_OPTS = 96 };
@@ -52,7 +55,9 @@ typedef struct {
 } cli_parsed;
 
 /* Parses argv[1..argc-1] (argv[0] is the command's name). Returns 0, 1 after printing --help
- * (exit 0), or -1 after printing one error line (bad usage). */
+ * (exit 0), or -1 after printing one error line (bad usage). Long names must be given whole (no
+ * abbreviations); an option given twice (also under an old spelling) and two options of one
+ * exclusive group are errors (docs/CLI.md, "Grammar"). */
 int cli_opts_parse(const cli_command_spec *c, void *args, int argc, char **argv, cli_parsed *p);
 /* 1 if the option with this long name (or one of its old spellings) was given. */
 int cli_opts_given(const cli_command_spec *c, const cli_parsed *p, const char *name);

@@ -17,16 +17,25 @@ cli_progress_mode cli_progress_get_mode(void) { return g_mode; }
 
 int cli_progress_options(int argc, char **argv)
 {
-    int n = 0, i = 0;
+    int n = 0, i = 0, given = 0; /* given: 0, or the mode already set */
     for (; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "--")) break;
-        if (i > 0 && !strcmp(a, "--progress"))
-            g_mode = CLI_PROGRESS_ALWAYS;
-        else if (i > 0 && (!strcmp(a, "--quiet") || !strcmp(a, "-q")))
-            g_mode = CLI_PROGRESS_NEVER;
-        else
+        const int progress = i > 0 && !strcmp(a, "--progress"), quiet = i > 0 && (!strcmp(a, "--quiet") || !strcmp(a, "-q"));
+        if (!progress && !quiet) {
             argv[n++] = argv[i];
+            continue;
+        }
+        const int mode = progress ? CLI_PROGRESS_ALWAYS : CLI_PROGRESS_NEVER;
+        if (given) {
+            fprintf(stderr, "biref %s: error: %s\n", argv[0],
+                    given != mode ? "--progress and --quiet exclude each other"
+                    : progress    ? "--progress given twice"
+                                  : "--quiet given twice");
+            return -1;
+        }
+        given = mode;
+        g_mode = (cli_progress_mode)mode;
     }
     for (; i < argc; i++) argv[n++] = argv[i];
     argv[n] = NULL;

@@ -15,8 +15,9 @@
 
 typedef enum { CLI_PROGRESS_AUTO, CLI_PROGRESS_ALWAYS, CLI_PROGRESS_NEVER } cli_progress_mode;
 
-/* Takes --progress, --quiet and -q out of a command's argv (up to a "--"), sets the mode from the
- * last of them, and returns the new argc (argv stays NULL-terminated). */
+/* Takes --progress, --quiet and -q out of a command's argv (up to a "--"; argv[0] is the command's
+ * name), sets the mode and returns the new argc (argv stays NULL-terminated); -1 after one error
+ * line when they are given twice or together (they exclude each other). */
 int cli_progress_options(int argc, char **argv);
 void cli_progress_set_mode(cli_progress_mode mode);
 cli_progress_mode cli_progress_get_mode(void);

@@ -25,7 +25,9 @@ static int parse_sweep(const char *text, double *out, int *n)
         char *end = NULL;
         errno = 0;
         double v = strtod(p, &end);
-        if (end == p || errno == ERANGE || !isfinite(v) || (*end != ',' && *end != '\0'))
+        char field[64];
+        snprintf(field, sizeof field, "%.*s", (int)(end - p), p);
+        if (end == p || !cli_number_syntax_ok(field, 0) || errno == ERANGE || !isfinite(v) || (*end != ',' && *end != '\0'))
             return cli_error(CMD, "--sweep-delta-eps: expected comma-separated finite numbers or none, got '%s'",
                              text),
                    -1;
@@ -189,6 +191,7 @@ const cli_command_spec CLI_ACCURACY = {
     25,
     handle,
     1,
+    NULL,
 };
 
 /* Returns 0 to run the study, 1 after --help, -1 on bad usage (one error line printed). */

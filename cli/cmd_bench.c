@@ -160,6 +160,7 @@ const cli_command_spec CLI_BENCH = {
     0,
     handle,
     1,
+    NULL,
 };
 
 /* Times each method on the scene with n_threads threads. Returns a CLI exit code. */

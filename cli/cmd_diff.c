@@ -46,6 +46,7 @@ const cli_command_spec CLI_DIFF = {
     0,
     NULL,
     0,
+    NULL,
 };
 
 static int cmp_double(const void *a, const void *b)

@@ -383,6 +383,7 @@ const cli_command_spec CLI_FIGURE = {
     0,
     NULL,
     1,
+    NULL,
 };
 
 int cmd_figure(int argc, char **argv)

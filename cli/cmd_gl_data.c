@@ -38,6 +38,7 @@ const cli_command_spec CLI_GL_DATA = {
     0,
     NULL,
     0,
+    NULL,
 };
 
 static void add_uniform(void *user, const char *name, int comps, int count, const float *v)

@@ -101,6 +101,7 @@ const cli_command_spec CLI_RENDER = {
     0,
     handle,
     1,
+    NULL,
 };
 
 /* Options that only make sense together. Returns 0, 1 after --help, or -1 (one error printed). */

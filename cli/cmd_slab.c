@@ -45,6 +45,8 @@ static const cli_opt OPTS[] = {
     CLI_FLAG("json", 0, offsetof(slab_args, json), "machine-readable output"),
 };
 
+static const char *const EXCLUSIVE[] = {CLI_SLAB_EXCLUSIVE, NULL};
+
 const cli_command_spec CLI_SLAB = {
     "slab",
     "usage: biref slab [OPTIONS]\n\n"
@@ -58,6 +60,7 @@ const cli_command_spec CLI_SLAB = {
     0,
     handle,
     0,
+    EXCLUSIVE,
 };
 
 static const char *const MODE_NAMES[4] = {"o_down", "e_down", "o_up", "e_up"};

@@ -166,6 +166,8 @@ static const cli_opt OPTS[] = {
 };
 #undef F
 
+static const char *const EXCLUSIVE[] = {CLI_SLAB_EXCLUSIVE, "polarization polarizer stokes", NULL};
+
 const cli_command_spec CLI_SPECTRUM = {
     "spectrum",
     "usage: biref spectrum [OPTIONS]\n\n"
@@ -182,6 +184,7 @@ const cli_command_spec CLI_SPECTRUM = {
     0,
     handle,
     0,
+    EXCLUSIVE,
 };
 
 /* Options that only make sense together. Returns 0 or -1 (one error line printed). */

@@ -79,7 +79,7 @@ int main(int argc, char **argv)
         if (!strcmp(argv[1], commands[i].name)) {
             /* --progress and --quiet mean the same for every command: taken here, once. */
             const int n = cli_progress_options(argc - 1, argv + 1);
-            return commands[i].run(n, argv + 1);
+            return n < 0 ? 2 : commands[i].run(n, argv + 1);
         }
     fprintf(stderr, "biref: error: unknown command '%s' (see biref --help)\n", argv[1]);
     return 2;

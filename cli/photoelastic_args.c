@@ -249,6 +249,8 @@ static const cli_opt OPTS[] = {
 };
 #undef F
 
+static const char *const EXCLUSIVE[] = {"preset stress-grid stress-nodes", "map format phase-steps", NULL};
+
 const cli_command_spec CLI_PHOTOELASTIC = {
     "photoelastic",
     "usage: biref photoelastic (--preset disk|hole|beam | --stress-grid FILE | --stress-nodes FILE) [OPTIONS]\n"
@@ -269,6 +271,7 @@ const cli_command_spec CLI_PHOTOELASTIC = {
     0,
     handle,
     1,
+    EXCLUSIVE,
 };
 
 static void defaults(pe_args *a)

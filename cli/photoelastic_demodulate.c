@@ -73,6 +73,8 @@ static const cli_opt OPTS[] = {
 };
 #undef F
 
+static const char *const EXCLUSIVE[] = {"zero-order order-at", NULL};
+
 const cli_command_spec CLI_PHOTOELASTIC_DEMODULATE = {
     "photoelastic demodulate",
     "usage: biref photoelastic demodulate IMAGE1 ... IMAGEn -o DIR (--zero-order PX,PY | --order-at PX,PY,N)\n"
@@ -95,6 +97,7 @@ const cli_command_spec CLI_PHOTOELASTIC_DEMODULATE = {
     0,
     handle,
     0,
+    EXCLUSIVE,
 };
 
 static const char *const MAP_NAMES[5] = {"isoclinic", "phase-wrapped", "fringe-order", "modulation", "background"};

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Progress on stderr when it is not a terminal (here a file): a job that runs for seconds prints
 # plain progress lines and a final "done" line, without the terminal bar's carriage returns;
-# --progress prints them from the start even for a short job; --quiet (or -q) prints none, also
-# after --progress; every command accepts both options.
+# --progress prints them from the start even for a short job; --quiet (or -q) prints none; the
+# two exclude each other; every command accepts either.
 set -u
 . "$(dirname "$0")/lib.sh"
 scene="$(dirname "$0")/../../examples/fig9a.json"
@@ -32,7 +32,7 @@ elif grep -q $'\r' "$tmpdir/long.err"; then
   fails=$((fails + 1))
 fi
 
-# A short job: lines with --progress, none with --quiet/-q (the last wins). (That a short job prints
+# A short job: lines with --progress, none with --quiet/-q; both, or one twice, is an error. (That a short job prints
 # nothing by default is not tested: a loaded machine can make any job last 2 s.)
 short=(render "$scene" -o "$tmpdir/short.png" --width 24 --height 24 --threads 1)
 check_stderr() { # DESCRIPTION EXPECT(lines|empty) ARGS...
@@ -51,21 +51,25 @@ check_stderr() { # DESCRIPTION EXPECT(lines|empty) ARGS...
   fi
 }
 check_stderr "short render --progress" lines "${short[@]}" --progress
-check_stderr "--progress then --quiet" empty "${short[@]}" --progress --quiet
-check_stderr "--progress then -q" empty "${short[@]}" --progress -q
-check_stderr "-q then --progress" lines "${short[@]}" -q --progress
+check_stderr "short render --quiet" empty "${short[@]}" --quiet
+check_stderr "short render -q" empty "${short[@]}" -q
+expect_error "--progress then --quiet" "${short[@]}" --progress --quiet
+expect_error "-q then --progress" "${short[@]}" -q --progress
+expect_error "--quiet twice" "${short[@]}" --quiet -q
+expect_error "--progress twice" "${short[@]}" --progress --progress
 acc=(accuracy --theta-max-deg 40 --theta-step-deg 20 --azimuths 2 --reference-samples 256 --json)
 check_stderr "accuracy --progress" lines "${acc[@]}" --progress
-check_stderr "accuracy --progress --quiet" empty "${acc[@]}" --progress --quiet
+check_stderr "accuracy --quiet" empty "${acc[@]}" --quiet
 pe=(photoelastic --preset disk --size 32 -o "$tmpdir/pe.png")
 check_stderr "photoelastic --progress" lines "${pe[@]}" --progress
-check_stderr "photoelastic --progress --quiet" empty "${pe[@]}" --progress --quiet
+check_stderr "photoelastic --quiet" empty "${pe[@]}" --quiet
 bench=(bench --scene "$scene" --width 16 --height 16 --methods analytic,numeric-8 --max-seconds 0.05 --json)
 check_stderr "bench --progress" lines "${bench[@]}" --progress
 
 expect_ok "biref --help" --help
 expect_grep "biref --help names --progress and --quiet" '--progress.*-q, --quiet'
 for cmd in slab spectrum accuracy render diff bench figure gl-data photoelastic; do
-  expect_ok "$cmd takes --quiet and --progress" "$cmd" --quiet --progress --help
+  expect_ok "$cmd takes --quiet" "$cmd" --quiet --help
+  expect_ok "$cmd takes --progress" "$cmd" --progress --help
 done
 finish

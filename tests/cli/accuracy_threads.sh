@@ -3,10 +3,10 @@
 # 1 and on 2 threads, the timings and the thread count aside.
 set -u
 . "$(dirname "$0")/lib.sh"
-small=(accuracy --theta-max-deg 80 --theta-step-deg 40 --azimuths 2 --reference-samples 256 --check-samples 512
-       --json)
 # The sanitizer build (BIREF_TEST_QUICK) is some 30x slower: fewer states, still several per thread.
-[ -z "${BIREF_TEST_QUICK:-}" ] || small+=(--theta-max-deg 40 --azimuths 1)
+grid=(--theta-max-deg 80 --azimuths 2)
+[ -z "${BIREF_TEST_QUICK:-}" ] || grid=(--theta-max-deg 40 --azimuths 1)
+small=(accuracy "${grid[@]}" --theta-step-deg 40 --reference-samples 256 --check-samples 512 --json)
 expect_ok "1 thread" "${small[@]}" --threads 1
 mv "$tmpdir/out" "$tmpdir/t1.json"
 expect_ok "2 threads" "${small[@]}" --threads 2

@@ -15,10 +15,20 @@ int cli_parse_linear_polarizer(const char *cmd, const char *opt, const char *tex
     return cli_parse_double(cmd, opt, text + sizeof prefix - 1, deg);
 }
 
+int cli_check_coordinates_mm(const char *cmd, const char *opt, const char *text, const double *v, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!(fabs(v[i]) <= CLI_MAX_COORDINATE_MM)) {
+            cli_error(cmd, "%s: coordinates are at most %g mm in magnitude, got '%s'", opt, CLI_MAX_COORDINATE_MM, text);
+            return -1;
+        }
+    return 0;
+}
+
 int cli_parse_window(const char *cmd, const char *opt, const char *text, double frame[4])
 {
     double c[4];
-    if (cli_parse_list(cmd, opt, text, c, 4)) return -1;
+    if (cli_parse_list(cmd, opt, text, c, 4) || cli_check_coordinates_mm(cmd, opt, text, c, 4)) return -1;
     if (c[0] == c[2] || c[1] == c[3]) {
         cli_error(cmd, "%s: expected two opposite corners x0,y0,x1,y1 with x0 != x1 and y0 != y1, got '%s'", opt,
                   text);

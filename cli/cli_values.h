@@ -10,6 +10,12 @@ int cli_parse_linear_polarizer(const char *cmd, const char *opt, const char *tex
  * area. Prints one error and returns -1 otherwise. */
 int cli_parse_window(const char *cmd, const char *opt, const char *text, double frame[4]);
 
+/* Plate coordinates in mm are at most CLI_MAX_COORDINATE_MM in magnitude (a kilometre, as the
+ * stress grids' coordinates): lengths and steps between them stay finite. Prints one error and
+ * returns -1 otherwise. */
+#define CLI_MAX_COORDINATE_MM 1e6
+int cli_check_coordinates_mm(const char *cmd, const char *opt, const char *text, const double *v, int n);
+
 /* "prefilter" -> 1, "none" -> 0 (--antialias of render and photoelastic). Prints one error and
  * returns -1 otherwise. */
 int cli_parse_antialias(const char *cmd, const char *text, int *prefilter);

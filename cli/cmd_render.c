@@ -168,6 +168,12 @@ static int render_xyz(const render_args *a, const biref_scene *scene, float *xyz
     res->ms = 1e3 * (biref_wall_seconds() - t0);
     biref_progress_bar_finish(&bar);
     biref_renderer_destroy(r);
+    /* Not an error (the image is finite), but never silent. */
+    if (rs == BIREF_OK && res->stats.fallback_evals > 0)
+        fprintf(stderr,
+                "biref render: warning: %s: %ld slab evaluations failed and show no transmission, full reflection "
+                "(fallback_evaluations in --json)\n",
+                a->scene_path, (long)res->stats.fallback_evals);
     if (rs != BIREF_OK)
         return cli_error(CMD, "%s: %s", a->scene_path,
                          rs == BIREF_ERR_ILLCOND ? "some pixels came out non-finite (no image written)"

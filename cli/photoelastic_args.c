@@ -137,13 +137,15 @@ static int handle(void *args, int code, const char *arg)
         return 0;
     case OPT_PROFILE:
         a->have_profile = 1;
-        return cli_parse_list(CMD, "--profile", arg, a->profile, 4);
+        if (cli_parse_list(CMD, "--profile", arg, a->profile, 4)) return -1;
+        return cli_check_coordinates_mm(CMD, "--profile", arg, a->profile, 4);
     case OPT_WINDOW:
         a->have_view = 1;
         return cli_parse_window(CMD, "--window-mm", arg, a->view);
     case OPT_ANTIALIAS: return cli_parse_antialias(CMD, arg, &a->prefilter);
     case OPT_VIEW:
-        if (cli_parse_list(CMD, "--view-mm", arg, a->view, 4)) return -1;
+        if (cli_parse_list(CMD, "--view-mm", arg, a->view, 4) || cli_check_coordinates_mm(CMD, "--view-mm", arg, a->view, 4))
+            return -1;
         if (!(a->view[1] > a->view[0] && a->view[3] > a->view[2]))
             return cli_error(CMD, "--view-mm: expected xmin,xmax,ymin,ymax with xmin < xmax and ymin < ymax"), -1;
         a->have_view = 1;
@@ -205,7 +207,7 @@ static const cli_opt OPTS[] = {
     CLI_INT("size", "N", F(size), 1, 8192, "pixels along the longer side of the picture (default 512)"),
     CLI_CUSTOM("window-mm", "x0,y0,x1,y1", OPT_WINDOW,
                "show the window with opposite corners (x0, y0) and (x1, y1) of\n"
-               "the plate instead of the whole part"),
+               "the plate instead of the whole part (|x|, |y| <= 1e6 mm)"),
     CLI_DOUBLE("tilt-deg", "A", F(tilt_deg), 0, 80,
                "view the plate A degrees off its normal (turned about its x axis;\n"
                "0-80, default 0). Uses the general slab path (about 15x slower) and\n"
@@ -237,7 +239,8 @@ static const cli_opt OPTS[] = {
     CLI_TEXT("\nProfile:\n"),
     CLI_CUSTOM("profile", "x0,y0,x1,y1", OPT_PROFILE,
                "print intensity, retardation (nm) and fringe order N = h C (s1 - s2) / lambda\n"
-               "along the line from (x0, y0) to (x1, y1) in mm (white light: N at 550 nm;\n"
+               "along the line from (x0, y0) to (x1, y1) in mm, |x|, |y| <= 1e6 (white\n"
+               "light: N at 550 nm;\n"
                "tilted: the model's retardation along the oblique path)"),
     CLI_INT("profile-points", "N", F(samples), 2, 100000, "points on the profile (default 201)"),
     CLI_FLAG("json", 0, F(json), "machine-readable output"),

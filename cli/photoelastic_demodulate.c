@@ -66,7 +66,7 @@ static const cli_opt OPTS[] = {
     CLI_CUSTOM("zero-order", "PX,PY", OPT_ZERO,
                "pixel (column, row from the top-left, 0-based) of fringe order 0,\n"
                "e.g. the empty field of the polariscope next to the part"),
-    CLI_CUSTOM("order-at", "PX,PY,N", OPT_ORDER_AT, "pixel of known fringe order N instead"),
+    CLI_CUSTOM("order-at", "PX,PY,N", OPT_ORDER_AT, "pixel of known fringe order N instead (|N| <= 1e5)"),
     CLI_CUSTOM("min-modulation", "F", OPT_MINMOD, "mask pixels whose Ia is below F times the largest (default 0.05)"),
     CLI_CUSTOM("format", "pfm|csv", OPT_FORMAT, "map files (default pfm; csv: col,row,value)"),
     CLI_FLAG("json", 0, F(json), "machine-readable report"),

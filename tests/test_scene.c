@@ -267,11 +267,36 @@ static void test_validate(void)
     CHECK(biref_scene_validate(&sc, msg, sizeof msg) == BIREF_OK);
 }
 
+/* Strict JSON (RFC 8259): a raw control character in a string is refused, also a NUL; its
+ * escaped spelling is accepted. */
+static void test_raw_control_characters_refused(void)
+{
+    char *text = mutate("camera.comment", "\"a@b\"");
+    const size_t len = strlen(text);
+    char *at = strchr(text, '@');
+    CHECK(at != NULL);
+    if (!at) return free(text);
+    static const char raw[] = {'\t', '\x01', '\n', '\x1f', '\0'};
+    for (size_t i = 0; i < sizeof raw; i++) {
+        *at = raw[i];
+        char what[64];
+        snprintf(what, sizeof what, "raw byte 0x%02x in a string", (unsigned)raw[i]);
+        expect_bad_text(what, text, len, "scene");
+    }
+    free(text);
+    text = mutate("camera.comment", "\"a\\tb\\u0001c\"");
+    biref_scene sc;
+    char msg[256] = "";
+    CHECK(biref_scene_parse(text, strlen(text), &sc, msg, sizeof msg) == BIREF_OK);
+    free(text);
+}
+
 int main(int argc, char **argv)
 {
     static const test_case cases[] = {
         {"good", test_good},
         {"bad", test_bad},
+        {"raw_control_characters_refused", test_raw_control_characters_refused},
         {"validate", test_validate},
     };
     return test_run_cases("test_scene", cases, TEST_COUNT(cases), argc, argv);

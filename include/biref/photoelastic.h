@@ -378,7 +378,7 @@ BIREF_API void biref_pe_polariscope_stepped(double qwp_rad, double analyzer_rad,
 
 typedef struct {
     double ref_x, ref_y; /* pixel (column, row from the top) of known fringe order */
-    double ref_order;    /* fringe order there (0 for a zero-order point) */
+    double ref_order;    /* fringe order there (0 for a zero-order point), |ref_order| <= 1e5 */
     double min_modulation; /* pixels with Ia below this fraction of the largest Ia are masked */
 } biref_pe_demod_opts;
 

@@ -1,5 +1,6 @@
 /* Strict JSON for input files (scenes, material lists): the whole text must be one JSON value
- * (nothing but whitespace after it), and objects may hold only known keys, each once.
+ * (nothing but whitespace after it), strings may hold no raw control character (RFC 8259: they
+ * are escaped, "\t", "\u0001"), and objects may hold only known keys, each once.
  * Not part of the public API: compiled into the library (scene files) and the tools. */
 #ifndef BIREF_IO_JSON_STRICT_H
 #define BIREF_IO_JSON_STRICT_H

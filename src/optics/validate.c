@@ -10,6 +10,9 @@ biref_status biref_check_index(const char *name, double eta, char *msg, size_t m
 {
     if (!isfinite(eta)) return biref_fail(msg, msg_len, "%s must be a finite number (got %g)", name, eta);
     if (eta <= 0.0) return biref_fail(msg, msg_len, "%s must be positive (got %g)", name, eta);
+    if (eta > BIREF_MAX_INDEX)
+        return biref_fail(msg, msg_len, "%s must be at most %g, the largest refractive index biref takes (got %g)", name,
+                          BIREF_MAX_INDEX, eta);
     return BIREF_OK;
 }
 

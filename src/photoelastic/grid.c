@@ -197,7 +197,8 @@ static biref_status parse_row(const char *const fb[], const char *const fe[], co
         if (s == e) return biref_fail(msg, msg_len, "line %ld, column %s: empty field", line, COL_NAMES[c]);
         char buf[64];
         if ((size_t)(e - s) >= sizeof buf)
-            return biref_fail(msg, msg_len, "line %ld, column %s: not a number: '%.*s...'", line, COL_NAMES[c], w, s);
+            return biref_fail(msg, msg_len, "line %ld, column %s: a field of %ld characters is too long for a number: '%.*s...'",
+                              line, COL_NAMES[c], (long)(e - s), w, s);
         memcpy(buf, s, (size_t)(e - s));
         buf[e - s] = '\0';
         char *endp = NULL;
@@ -294,6 +295,11 @@ static biref_status place_nodes(biref_pe_grid *g, const row *rows, long n, const
 {
     if ((long)g->nx * g->ny > MAX_ROWS)
         return biref_fail(msg, msg_len, "the grid would have %ld nodes (more than %ld)", (long)g->nx * g->ny, MAX_ROWS);
+    /* Every node once: fewer rows than nodes is irregular, known before the lattice is allocated
+     * (a few rows whose x values fit a fine lattice would otherwise ask for gigabytes). */
+    if ((long)g->nx * g->ny > n)
+        return biref_fail(msg, msg_len, "irregular grid: %ld rows, but their x and y values span %d x %d nodes", n,
+                          g->nx, g->ny);
     g->v = malloc((size_t)g->nx * g->ny * 3 * sizeof *g->v);
     long *owner = malloc((size_t)g->nx * g->ny * sizeof *owner);
     if (!g->v || !owner) {

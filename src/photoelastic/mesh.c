@@ -19,6 +19,10 @@
 #define MAX_FILE_BYTES ((size_t)1 << 31)
 #define MAX_FIELDS 256
 #define MAX_NODES 20000000L
+/* A kilometre and a terapascal are beyond any part in a polariscope; within them, spans,
+ * areas and fringe orders stay finite. */
+#define NODE_MAX_M 1e3
+#define NODE_MAX_PA 1e12
 
 typedef struct {
     double x0, y0;       /* first vertex */
@@ -124,15 +128,15 @@ static int split_fields(const char *b, const char *e, char delim, const char *fb
     return n;
 }
 
-/* Strict number: the whole field. 0 ok, 1 empty, 2 not a number, 3 not finite. */
+/* Strict number: the whole field. 0 ok, 1 empty, 2 not a number, 3 not finite, 4 too long. */
 static int parse_number(const char *b, const char *e, double *out, char buf[64])
 {
     size_t n = (size_t)(e - b);
     if (n == 0) return 1;
-    if (n >= 64) n = 63;
+    if (n >= 64) n = 40;
     memcpy(buf, b, n);
     buf[n] = '\0';
-    if ((size_t)(e - b) >= 64) return 2;
+    if ((size_t)(e - b) >= 64) return 4;
     char *endp = NULL;
     errno = 0;
     double v = strtod(buf, &endp);
@@ -280,8 +284,12 @@ static biref_status delaunay(biref_pe_mesh *m, const double lo[2], const double 
     char flags[] = "qhull d Qt Qbb Qc Qz Q12";
     int code = qh_new_qhull(qh, 2, (int)n, pts, False, flags, NULL, errf);
     biref_status st;
-    if (code)
-        st = biref_fail(msg, msg_len, "cannot triangulate the nodes (qhull error %d: do they all lie on one line?)", code);
+    if (code == qh_ERRmem)
+        st = biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory in the triangulation (qhull)");
+    else if (code == qh_ERRsingular || code == qh_ERRprec)
+        st = biref_fail(msg, msg_len, "cannot triangulate the nodes: they do not span an area (all on one line?)");
+    else if (code)
+        st = biref_fail(msg, msg_len, "cannot triangulate the nodes (qhull error %d)", code);
     else
         st = collect_triangles(qh, m, 1e-14 * (hi[0] - lo[0]) * (hi[1] - lo[1]) + 1e-300, msg, msg_len);
     qh_freeqhull(qh, !qh_ALL);
@@ -414,14 +422,17 @@ static biref_status parse_node(const char *const db[], const char *const de[], c
     for (int r = 0; r < NROLE; r++) {
         char buf[64];
         int why = parse_number(db[col[r]], de[col[r]], &v[r], buf);
-        const double scale = r < 2 ? fmt->length_m : fmt->stress_pa;
-        if (!why && !isfinite(v[r] * scale)) why = 3;
+        const double scale = r < 2 ? fmt->length_m : fmt->stress_pa, max = r < 2 ? NODE_MAX_M : NODE_MAX_PA;
         if (why == 1) return biref_fail(msg, msg_len, "line %ld, column %s: empty field", line, label[r]);
-        if (why == 2)
-            return biref_fail(msg, msg_len, "line %ld, column %s: not a number: '%s%s'", line, label[r], buf,
-                              de[col[r]] - db[col[r]] >= 64 ? "..." : "");
+        if (why == 2) return biref_fail(msg, msg_len, "line %ld, column %s: not a number: '%s'", line, label[r], buf);
         if (why == 3)
             return biref_fail(msg, msg_len, "line %ld, column %s: not a finite number: '%s'", line, label[r], buf);
+        if (why == 4)
+            return biref_fail(msg, msg_len, "line %ld, column %s: a field of %ld characters is too long for a number: '%s...'",
+                              line, label[r], (long)(de[col[r]] - db[col[r]]), buf);
+        if (!(fabs(v[r] * scale) <= max))
+            return biref_fail(msg, msg_len, "line %ld, column %s: %s is out of range (at most %g %s in magnitude)", line,
+                              label[r], buf, max / scale, r < 2 ? "in the file's length unit" : "in the file's stress unit");
         v[r] *= scale;
     }
     nr->x = v[ROLE_X];
@@ -622,10 +633,15 @@ biref_status biref_pe_mesh_boundary_parse(biref_pe_mesh *m, const char *text, si
         for (int c = 0; c < 2 && st == BIREF_OK; c++) {
             char buf[64];
             int why = parse_number(fb[c], fe[c], &v[c], buf);
-            if (!why && !isfinite(v[c] * length_m)) why = 3;
+            if (!why && !(fabs(v[c] * length_m) <= NODE_MAX_M)) why = 5;
             if (why)
-                st = biref_fail(msg, msg_len, "line %ld, column %s: %s: '%s'", rd.line, c ? "y" : "x",
-                                why == 1 ? "empty field" : why == 2 ? "not a number" : "not a finite number", buf);
+                st = biref_fail(msg, msg_len, "line %ld, column %s: %s: '%s%s'", rd.line, c ? "y" : "x",
+                                why == 1   ? "empty field"
+                                : why == 2 ? "not a number"
+                                : why == 3 ? "not a finite number"
+                                : why == 4 ? "too long for a number"
+                                           : "out of range (more than a kilometre)",
+                                buf, why == 4 ? "..." : "");
             v[c] *= length_m;
         }
         if (st != BIREF_OK) break;

@@ -30,6 +30,9 @@
 #include "biref/photoelastic.h"
 #include "optics/validate.h"
 
+/* Largest |fringe order| of the reference point (docs/PHOTOELASTICITY.md, "Phase stepping"). */
+#define MAX_REF_ORDER 1e5
+
 static const double SETTINGS_DEG[6][2] = {{0, 45}, {0, 135}, {0, 0}, {45, 45}, {90, 90}, {135, 135}};
 
 /* The state the output side passes: u = conj(Q l). */
@@ -364,7 +367,10 @@ biref_status biref_pe_demodulate(int n, const float *const images[], int W, int 
     if (!(o->ref_x >= 0 && o->ref_x < W && o->ref_y >= 0 && o->ref_y < H) || rx >= W || ry >= H)
         return biref_fail(msg, msg_len, "the reference pixel (%g, %g) is outside the %d x %d images", o->ref_x, o->ref_y,
                           W, H);
-    if (!isfinite(o->ref_order)) return biref_fail(msg, msg_len, "the reference fringe order must be finite");
+    /* The maps are floats: beyond 1e5 fringes their steps (1/128 of a fringe there) hide the fringes. */
+    if (!(fabs(o->ref_order) <= MAX_REF_ORDER))
+        return biref_fail(msg, msg_len, "the reference fringe order %g is out of range (at most %g in magnitude)",
+                          o->ref_order, MAX_REF_ORDER);
     const double min_mod = o->min_modulation >= 0 && isfinite(o->min_modulation) ? o->min_modulation : 0.05;
     demod_work w;
     biref_status st = BIREF_OK;

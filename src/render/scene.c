@@ -14,6 +14,8 @@
 #include "biref/render.h"
 #include "error.h"
 #include "io/json_strict.h"
+#include "io/text_file.h"
+#include "optics/validate.h"
 #include "render/vec3.h"
 
 /* A JSON path such as "slabs[2].normal" names every error. 96 bytes hold the deepest path. */
@@ -549,49 +551,17 @@ done:
     return s;
 }
 
+#define SCENE_MAX_FILE_BYTES ((size_t)1 << 20)
+
 biref_status biref_scene_load(const char *path, biref_scene *out, char *msg, size_t msg_len)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        if (msg && msg_len) snprintf(msg, msg_len, "cannot read: %s", strerror(errno));
-        return BIREF_ERR_IO;
-    }
-    /* Scenes are small; 16 MiB is far beyond any sensible one and bounds the allocation. */
-    const size_t cap = 16u << 20;
-    size_t len = 0, size = 4096;
-    char *buf = malloc(size);
-    biref_status s = BIREF_OK;
-    while (buf) {
-        size_t got = fread(buf + len, 1, size - len, f);
-        len += got;
-        if (got == 0) break;
-        if (len == size) {
-            if (size >= cap) {
-                s = BIREF_ERR_INVALID;
-                if (msg && msg_len) snprintf(msg, msg_len, "scene: file too large (over 16 MiB)");
-                break;
-            }
-            char *nb = realloc(buf, size * 2);
-            if (!nb) {
-                free(buf);
-                buf = NULL;
-                break;
-            }
-            buf = nb;
-            size *= 2;
-        }
-    }
-    int read_error = ferror(f);
-    fclose(f);
-    if (!buf) {
-        if (msg && msg_len) snprintf(msg, msg_len, "out of memory");
-        return BIREF_ERR_NOMEM;
-    }
-    if (!s && read_error) {
-        s = BIREF_ERR_IO;
-        if (msg && msg_len) snprintf(msg, msg_len, "cannot read: I/O error");
-    }
-    if (!s) s = biref_scene_parse(buf, len, out, msg, msg_len);
+    /* Scenes are small (at most BIREF_SCENE_MAX_SLABS slabs); 1 MiB is far beyond any sensible one
+     * and bounds the parser's memory (its tree takes some 40 bytes per byte of JSON). */
+    char *buf;
+    size_t len;
+    biref_status s = biref_text_file_read(path, SCENE_MAX_FILE_BYTES, &buf, &len, msg, msg_len);
+    if (s) return s;
+    s = biref_scene_parse(buf, len, out, msg, msg_len);
     free(buf);
     return s;
 }
@@ -654,6 +624,8 @@ biref_status biref_scene_validate(const biref_scene *sc, char *msg, size_t msg_l
     if (!(v3_len(cr) > 1e-6)) return FAIL(c, "camera.up", "must not be parallel to the view direction");
 
     if (!(isfinite(sc->eta_medium) && sc->eta_medium > 0)) return FAIL(c, "medium.eta", "must be positive");
+    if (sc->eta_medium > BIREF_MAX_INDEX)
+        return FAIL(c, "medium.eta", "must be at most %g, the largest refractive index biref takes", BIREF_MAX_INDEX);
     if (sc->n_slabs < 1 || sc->n_slabs > BIREF_SCENE_MAX_SLABS)
         return FAIL(c, "slabs", "needs between 1 and %d slabs", BIREF_SCENE_MAX_SLABS);
     for (int i = 0; i < sc->n_slabs; i++) {
@@ -671,6 +643,9 @@ biref_status biref_scene_validate(const biref_scene *sc, char *msg, size_t msg_l
         if (!unit_vec(sl->axis)) return SLAB_FAIL("axis", "must be a unit vector");
         if (!(isfinite(sl->eta_o) && sl->eta_o > 0)) return SLAB_FAIL("eta_o", "must be positive");
         if (!(isfinite(sl->eta_e) && sl->eta_e > 0)) return SLAB_FAIL("eta_e", "must be positive");
+        if (sl->eta_o > BIREF_MAX_INDEX || sl->eta_e > BIREF_MAX_INDEX)
+            return SLAB_FAIL(sl->eta_o > BIREF_MAX_INDEX ? "eta_o" : "eta_e",
+                             "must be at most %g, the largest refractive index biref takes", BIREF_MAX_INDEX);
         /* The camera inside a slab sees no well-defined front face. Scene units are metres,
          * so the slab occupies |distance to its mid-plane| <= d / 2 over its rectangle. */
         double rel[3], b[3];

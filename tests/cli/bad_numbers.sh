@@ -60,6 +60,29 @@ printf '%s\n-1e308,0,1,0,0\n1e308,0,1,0,0\n-1e308,1,1,0,0\n1e308,1,1,0,0\n' "$h"
 expect_error "grid x 1e308" photoelastic --stress-grid "$tmpdir/g2.csv" -o "$tmpdir/g2.png" --size 20
 named "grid x line" 'line 2, column x_mm: -1e308 is out of range'
 
+# Coordinates of lines and windows: their lengths must stay finite (no -nan or -inf rows).
+expect_error "profile 1e308" photoelastic --preset disk --profile 1e308,0,-1e308,0 --profile-points 2
+named "profile bound" '--profile: coordinates are at most 1e\+06 mm'
+expect_error "window 1e308" photoelastic --preset disk --window-mm -1e308,0,1e308,1 -o "$tmpdir/w.png"
+named "window bound" '--window-mm: coordinates are at most'
+expect_ok "profile at the bound" photoelastic --preset disk --profile 1e6,0,-1e6,0 --profile-points 2
+if grep -Eqw -- '-?nan|-?inf' "$tmpdir/out"; then echo "FAIL (profile at the bound): non-finite output"; fails=$((fails + 1)); fi
+
+# Demodulation: a reference fringe order beyond float maps is refused, not an all-inf map.
+"$BIREF" photoelastic --preset disk --light mono --phase-steps 4 --size 24 -o "$tmpdir/st.pfm" >/dev/null
+expect_error "order-at 1e308" photoelastic demodulate "$tmpdir"/st-{1,2,3,4}.pfm --order-at 12,12,1e308 -o "$tmpdir/maps"
+named "order-at bound" 'reference fringe order 1e\+308 is out of range'
+[ -e "$tmpdir/maps/fringe-order.pfm" ] && { echo "FAIL (order-at 1e308): a map was written"; fails=$((fails + 1)); }
+
+# Refractive indices: at most 1000, so that a slab can always be evaluated (1e300 rendered a
+# scene of failed evaluations with status 0).
+expect_error "eta_o 1e300" spectrum --eta-o 1e300 --eta-e 1.5 --axis 0,1,0 --thickness-um 10
+named "eta_o bound" 'eta_o must be at most 1000'
+sed 's/"eta_o": 1.54/"eta_o": 1e300/' "$tmpdir/s.json" >"$tmpdir/eta.json"
+expect_error "scene eta_o 1e300" render "$tmpdir/eta.json" -o "$tmpdir/eta.png"
+named "scene eta_o bound" 'slabs\[0\]\.eta_o: must be at most 1000'
+expect_ok "eta_o 1000" spectrum --eta-o 1000 --eta-e 1.5 --axis 0,1,0 --thickness-um 10
+
 # Images: a 461-byte PNG declaring 16384 x 16384 pixels is refused before any decoding. The
 # reader writes this message only from the header check that precedes every allocation, so the
 # message itself shows where the refusal happened (no wall-clock test: timing is for benchmarks).

@@ -26,7 +26,7 @@ int cli_parse_polarizer_state(const char *cmd, const char *opt, const char *text
     if (!strncmp(text, "linear:", 7)) {
         double deg;
         if (cli_parse_double(cmd, opt, text + 7, &deg)) return -1;
-        double a = deg * M_PI / 180.0;
+        double a = fmod(deg, 360.0) * M_PI / 180.0; /* exact; 1e308 deg in radians would overflow */
         S[0] = 1.0, S[1] = cos(2 * a), S[2] = sin(2 * a), S[3] = 0.0;
         return 0;
     }
@@ -60,7 +60,7 @@ int cli_parse_general_analyzer(const char *cmd, const char *opt, const char *tex
     if (!strncmp(text, "linear:", 7)) {
         double deg;
         if (cli_parse_double(cmd, opt, text + 7, &deg)) return -1;
-        biref_analyzer_linear(deg * M_PI / 180.0, P);
+        biref_analyzer_linear(fmod(deg, 360.0) * M_PI / 180.0, P);
         return 1;
     }
     if (!strncmp(text, "circular:", 9)) {

@@ -12,7 +12,9 @@ int cli_parse_linear_polarizer(const char *cmd, const char *opt, const char *tex
         cli_error(cmd, "%s: expected linear:DEG (a polariscope's polarizer is linear), got '%s'", opt, text);
         return -1;
     }
-    return cli_parse_double(cmd, opt, text + sizeof prefix - 1, deg);
+    if (cli_parse_double(cmd, opt, text + sizeof prefix - 1, deg)) return -1;
+    *deg = fmod(*deg, 360.0); /* exact; 1e308 deg in radians would overflow */
+    return 0;
 }
 
 int cli_check_coordinates_mm(const char *cmd, const char *opt, const char *text, const double *v, int n)

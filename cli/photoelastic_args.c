@@ -129,7 +129,10 @@ static int handle(void *args, int code, const char *arg)
         return 0;
     }
     case OPT_POLARIZER: return cli_parse_linear_polarizer(CMD, "--polarizer", arg, &a->polarizer_deg);
-    case OPT_POLARIZER_DEG: return cli_parse_double(CMD, "--polarizer-deg", arg, &a->polarizer_deg);
+    case OPT_POLARIZER_DEG:
+        if (cli_parse_double(CMD, "--polarizer-deg", arg, &a->polarizer_deg)) return -1;
+        a->polarizer_deg = fmod(a->polarizer_deg, 360.0);
+        return 0;
     case OPT_EXPOSURE:
         if (cli_parse_double(CMD, "--exposure", arg, &a->exposure)) return -1;
         if (!(a->exposure > 0 && a->exposure <= 1e30))

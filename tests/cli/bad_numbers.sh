@@ -60,6 +60,12 @@ printf '%s\n-1e308,0,1,0,0\n1e308,0,1,0,0\n-1e308,1,1,0,0\n1e308,1,1,0,0\n' "$h"
 expect_error "grid x 1e308" photoelastic --stress-grid "$tmpdir/g2.csv" -o "$tmpdir/g2.png" --size 20
 named "grid x line" 'line 2, column x_mm: -1e308 is out of range'
 
+# Angles of 1e308 degrees are angles (modulo 360), for the analyzer as for the polarizer.
+expect_ok "analyzer linear:1e308" spectrum "${slab[@]}" --method numeric --analyzer linear:1e308
+expect_ok "polarizer linear:1e308" spectrum "${slab[@]}" --method numeric --polarizer linear:1e308
+expect_ok "photoelastic polarizer linear:1e308" photoelastic --preset disk --polariscope plane --size 16 \
+  --polarizer linear:1e308 -o "$tmpdir/pol.png"
+
 # Coordinates of lines and windows: their lengths must stay finite (no -nan or -inf rows).
 expect_error "profile 1e308" photoelastic --preset disk --profile 1e308,0,-1e308,0 --profile-points 2
 named "profile bound" '--profile: coordinates are at most 1e\+06 mm'

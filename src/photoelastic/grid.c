@@ -295,9 +295,10 @@ static biref_status place_nodes(biref_pe_grid *g, const row *rows, long n, const
 {
     if ((long)g->nx * g->ny > MAX_ROWS)
         return biref_fail(msg, msg_len, "the grid would have %ld nodes (more than %ld)", (long)g->nx * g->ny, MAX_ROWS);
-    /* Every node once: fewer rows than nodes is irregular, known before the lattice is allocated
-     * (a few rows whose x values fit a fine lattice would otherwise ask for gigabytes). */
-    if ((long)g->nx * g->ny > n)
+    /* Every node once: fewer rows than nodes is irregular. Far fewer is refused before the lattice
+     * is allocated (a few rows whose x and y values fit a fine lattice would otherwise ask for
+     * gigabytes); a few missing nodes are named below, at a cost bounded by the rows'. */
+    if ((long)g->nx * g->ny > 2 * n + 1024)
         return biref_fail(msg, msg_len, "irregular grid: %ld rows, but their x and y values span %d x %d nodes", n,
                           g->nx, g->ny);
     g->v = malloc((size_t)g->nx * g->ny * 3 * sizeof *g->v);

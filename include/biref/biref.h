@@ -23,5 +23,6 @@
 #include "biref/photoelastic.h"
 #include "biref/shading.h"
 #include "biref/gpu.h"
+#include "biref/material.h"
 
 #endif /* BIREF_BIREF_H */

@@ -213,7 +213,8 @@ biref_status biref_material_load_csv(const char *path, biref_material **out, cha
     if (s == BIREF_OK && r.n < 2) s = biref_fail(msg, msg_len, "%s: a table needs at least 2 rows (got %zu)", path, r.n);
     if (s == BIREF_OK) {
         char why[BIREF_MSG_SIZE];
-        s = biref_material_from_table(path, r.n, r.col[0], r.col[1], cols == 3 ? r.col[2] : NULL, out, why, sizeof why);
+        const char *base = strrchr(path, '/');
+        s = biref_material_from_table(base ? base + 1 : path, r.n, r.col[0], r.col[1], cols == 3 ? r.col[2] : NULL, out, why, sizeof why);
         if (s != BIREF_OK) biref_fail_status(s, msg, msg_len, "%s: %s", path, why);
     }
     for (int c = 0; c < 3; c++) free(r.col[c]);

@@ -250,30 +250,20 @@ static void make_light(const spectrum_args *a, biref_light *l)
 }
 
 /* The numeric integration of a dispersive slab, n(λ) at every sample (material.h). */
-static int compute_dispersive(const spectrum_args *a, const biref_spectral *sp, const biref_light *light,
+static int compute_dispersive(const spectrum_args *a, const biref_integrator *it, const biref_light *light,
                               spectrum_result *res)
 {
     if (cli_slab_check_band(CMD, &a->so, a->cfg.lambda_min_nm, a->cfg.lambda_max_nm)) return CLI_EXIT_USAGE;
-    char why[BIREF_MSG_SIZE];
-    biref_numeric_plan *plan = NULL;
-    biref_status s = biref_numeric_plan_create(sp, res->n_samples, &plan, why, sizeof why);
-    if (s != BIREF_OK) return cli_error(CMD, "%s", why), CLI_EXIT_FAIL;
     const double theta = a->so.theta_deg * M_PI / 180.0;
-    s = biref_spectrum_numeric_dispersive(plan, a->so.material, &a->so.slab, theta, &res->spec);
-    for (int w = 0; w < 2 && s == BIREF_OK; w++) {
-        double *xyz = w ? res->R_xyz : res->T_xyz;
-        if (light->sp_model)
-            biref_spectrum_mix(w ? res->spec.R : res->spec.T, light->w_in, light->mask, xyz);
-        else
-            s = biref_spectrum_numeric_dispersive_polarized(
-                plan, a->so.material, &a->so.slab, theta, w ? BIREF_REFLECTION : BIREF_TRANSMISSION,
-                (const double complex(*)[2])light->C, light->has_analyzer ? (const double complex(*)[2])light->P : NULL,
-                xyz);
-    }
-    biref_numeric_plan_destroy(plan);
+    biref_integration mixed;
+    biref_status s = biref_integrate_material_spectrum(it, a->so.material, &a->so.slab, theta, &res->spec);
+    if (s == BIREF_OK)
+        s = biref_integrate_material(it, a->so.material, &a->so.slab, theta, BIREF_SIDE_BOTH, light, &mixed);
+    if (s == BIREF_ERR_ILLCOND) return cli_error(CMD, "numerical failure (non-finite result)"), CLI_EXIT_FAIL;
     if (s != BIREF_OK) return cli_error(CMD, "numeric integration: %s", biref_status_string(s)), CLI_EXIT_FAIL;
-    if (!all_finite(&res->spec)) return cli_error(CMD, "numerical failure (non-finite result)"), CLI_EXIT_FAIL;
-    res->order_used[0] = res->order_used[1] = -1;
+    memcpy(res->T_xyz, mixed.T, sizeof res->T_xyz);
+    memcpy(res->R_xyz, mixed.R, sizeof res->R_xyz);
+    memcpy(res->order_used, mixed.order_used, sizeof res->order_used);
     biref_xyz_to_srgb(res->T_xyz, res->T_rgb);
     biref_xyz_to_srgb(res->R_xyz, res->R_rgb);
     return CLI_EXIT_OK;
@@ -296,13 +286,7 @@ static int compute(const spectrum_args *a, spectrum_result *res)
     s = biref_spectral_create(&a->cfg, &sp, why, sizeof why);
     if (s == BIREF_ERR_INVALID) return cli_error(CMD, "--range-nm: %s", why), CLI_EXIT_USAGE;
     if (s != BIREF_OK) return cli_error(CMD, "spectral context: %s", why), CLI_EXIT_FAIL;
-    if (a->so.material) {
-        biref_light light;
-        make_light(a, &light);
-        const int rc = compute_dispersive(a, sp, &light, res);
-        biref_spectral_destroy(sp);
-        return rc;
-    }
+
     biref_integrator_options io;
     biref_integrator_options_default(&io);
     io.method = a->method;
@@ -316,6 +300,12 @@ static int compute(const spectrum_args *a, spectrum_result *res)
     }
     biref_light light;
     make_light(a, &light);
+    if (a->so.material) {
+        const int rc = compute_dispersive(a, it, &light, res);
+        biref_integrator_destroy(it);
+        biref_spectral_destroy(sp);
+        return rc;
+    }
     biref_integration mixed;
     s = biref_integrate_spectrum(it, &res->st, &res->spec);
     biref_status sm = s == BIREF_OK ? biref_integrate(it, &res->st, BIREF_SIDE_BOTH, &light, &mixed) : s;

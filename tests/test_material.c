@@ -2,6 +2,7 @@
  * birefringences, group indices against finite differences, tables and their CSV files, the
  * refusal of unphysical formulas; slabs of dispersive materials against the transfer matrix per
  * wavelength, energy, an independent per-sample integration, and the flat-dispersion limit. */
+#define BIREF_EXPERIMENTAL_API /* numeric plans, to compare with the dispersive sums directly */
 #include <complex.h>
 #include <math.h>
 #include <stdio.h>
@@ -365,6 +366,47 @@ static void test_flat_dispersion_limit(void)
     biref_spectral_destroy(sp);
 }
 
+/* The stable door: an integrator of the numeric method with a constant material equals
+ * biref_integrate on the prepared slab; the closed-form methods refuse a material. */
+static void test_integrator_takes_materials(void)
+{
+    biref_spectral *sp = NULL;
+    CHECK(biref_spectral_create(NULL, &sp, NULL, 0) == BIREF_OK);
+    biref_integrator_options io;
+    biref_integrator_options_default(&io);
+    biref_integrator *an = NULL, *nu = NULL;
+    CHECK(biref_integrator_create(sp, &io, &an, NULL, 0) == BIREF_OK);
+    io.method = BIREF_METHOD_NUMERIC;
+    io.samples = 96;
+    CHECK(biref_integrator_create(sp, &io, &nu, NULL, 0) == BIREF_OK);
+    const biref_slab s = {1.55, 1.64, {0.2, 0.7, 0.4}, 30000, 1.0};
+    biref_material *m = NULL;
+    CHECK(biref_material_constant(s.eta_o, s.eta_e, &m, NULL, 0) == BIREF_OK);
+    biref_slab_state st;
+    CHECK(biref_slab_prepare(&s, 0.6, &st) == BIREF_OK);
+    const double w_in[2] = {0.75, 0.25}, mask[2] = {0, 1};
+    biref_light l;
+    CHECK(biref_light_sp(w_in, mask, &l) == BIREF_OK);
+    biref_integration a, b;
+    CHECK(biref_integrate(nu, &st, BIREF_SIDE_BOTH, &l, &a) == BIREF_OK);
+    CHECK(biref_integrate_material(nu, m, &s, 0.6, BIREF_SIDE_BOTH, &l, &b) == BIREF_OK);
+    for (int j = 0; j < 3; j++) {
+        CHECK_NEAR(a.T[j], b.T[j], 1e-12);
+        CHECK_NEAR(a.R[j], b.R[j], 1e-12);
+    }
+    biref_spectrum x, y;
+    CHECK(biref_integrate_spectrum(nu, &st, &x) == BIREF_OK);
+    CHECK(biref_integrate_material_spectrum(nu, m, &s, 0.6, &y) == BIREF_OK);
+    CHECK(memcmp(&x, &y, sizeof x) == 0);
+    CHECK(biref_integrate_material(an, m, &s, 0.6, BIREF_SIDE_BOTH, &l, &b) == BIREF_ERR_INVALID);
+    CHECK(biref_integrate_material_spectrum(an, m, &s, 0.6, &y) == BIREF_ERR_INVALID);
+    CHECK(biref_integrate_material(nu, m, &s, 2.0, BIREF_SIDE_BOTH, &l, &b) == BIREF_ERR_INVALID);
+    biref_material_destroy(m);
+    biref_integrator_destroy(an);
+    biref_integrator_destroy(nu);
+    biref_spectral_destroy(sp);
+}
+
 int main(int argc, char **argv)
 {
     static const test_case cases[] = {
@@ -382,6 +424,7 @@ int main(int argc, char **argv)
         {"dispersive_numeric_matches_transfer_matrix_integral",
          test_dispersive_numeric_matches_transfer_matrix_integral},
         {"flat_dispersion_limit", test_flat_dispersion_limit},
+        {"integrator_takes_materials", test_integrator_takes_materials},
     };
     return test_run_cases("test_material", cases, TEST_COUNT(cases), argc, argv);
 }

@@ -17,6 +17,7 @@
 #include "biref/common.h"
 #include "biref/optics.h"
 #include "biref/polarization.h"
+#include "biref/integrator.h"
 #include "biref/spectral.h"
 
 #ifdef __cplusplus
@@ -122,19 +123,26 @@ BIREF_API int biref_material_extrapolated(const biref_material *m, double lo_nm,
 BIREF_API biref_status biref_material_slab_at(const biref_material *m, const biref_slab *geometry, double lambda_nm,
                                               biref_slab *out);
 
-/* Numeric integration with the indices evaluated at every sample wavelength (the slab prepared
- * anew per sample): the dispersive counterparts of biref_spectrum_numeric and
- * biref_spectrum_numeric_polarized. With constant indices they equal them. geometry must pass
- * biref_slab_check, theta biref_theta_check, and the material biref_material_check_band over the
- * plan's band (else BIREF_ERR_INVALID); BIREF_ERR_SINGULAR from a sample's interface solve. */
-BIREF_API biref_status biref_spectrum_numeric_dispersive(const biref_numeric_plan *plan, const biref_material *m,
+/* ------------------------------------------------------------------------- */
+/* Integration with dispersion                                                */
+/* ------------------------------------------------------------------------- */
+
+/* biref_integrate for a slab of a dispersive material: geometry's axis, thickness and eta_i (its
+ * eta_o, eta_e are ignored) at theta, the indices of m. The numeric and ground-truth methods
+ * prepare the slab anew at every sample wavelength (exact; with constant indices the same
+ * numbers as biref_integrate). BIREF_ERR_INVALID for the analytic and expansion methods (they do
+ * not take dispersion yet), for a geometry failing biref_slab_check or an angle failing
+ * biref_theta_check, for a sample where the material is unphysical (biref_material_check_band
+ * over the integrator's band says why) and for no side; BIREF_ERR_SINGULAR from a sample's
+ * interface solve; BIREF_ERR_ILLCOND for a non-finite result. No allocation. */
+BIREF_API biref_status biref_integrate_material(const biref_integrator *it, const biref_material *m,
+                                                const biref_slab *geometry, double theta_rad, biref_sides sides,
+                                                const biref_light *light, biref_integration *out);
+
+/* The four s/p pair intensities of transmission and reflection (as biref_integrate_spectrum). */
+BIREF_API biref_status biref_integrate_material_spectrum(const biref_integrator *it, const biref_material *m,
                                                          const biref_slab *geometry, double theta_rad,
                                                          biref_spectrum *out);
-BIREF_API biref_status biref_spectrum_numeric_dispersive_polarized(const biref_numeric_plan *plan,
-                                                                   const biref_material *m, const biref_slab *geometry,
-                                                                   double theta_rad, int which,
-                                                                   const biref_complex C[2][2],
-                                                                   const biref_complex P[2][2], double xyz[3]);
 
 #ifdef __cplusplus
 }

@@ -9,6 +9,7 @@
 
 #include "biref/material.h"
 #include "optics/slab_internal.h"
+#include "spectral/integrator_internal.h"
 #include "spectral/numeric_jones.h"
 #include "spectral/spectral_internal.h"
 
@@ -97,5 +98,48 @@ biref_status biref_spectrum_numeric_dispersive_polarized(const biref_numeric_pla
                 for (int k = 0; k < 2; k++) I_det += creal(C[i][j] * M[i][k] * conj(M[j][k]));
         for (int b = 0; b < 3; b++) xyz[b] += plan->weight[n][b] * I_det;
     }
+    return BIREF_OK;
+}
+
+static int finite3(const double v[3]) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
+
+biref_status biref_integrate_material_spectrum(const biref_integrator *it, const biref_material *m,
+                                               const biref_slab *geometry, double theta, biref_spectrum *out)
+{
+    const biref_numeric_plan *plan = biref_integrator_plan(it);
+    if (!plan) return BIREF_ERR_INVALID; /* the closed-form methods take no dispersion yet */
+    biref_status s = biref_spectrum_numeric_dispersive(plan, m, geometry, theta, out);
+    if (s != BIREF_OK) return s;
+    for (int i = 0; i < 2; i++)
+        for (int o = 0; o < 2; o++)
+            if (!finite3(out->T[i][o]) || !finite3(out->R[i][o])) return BIREF_ERR_ILLCOND;
+    return BIREF_OK;
+}
+
+biref_status biref_integrate_material(const biref_integrator *it, const biref_material *m, const biref_slab *geometry,
+                                      double theta, biref_sides sides, const biref_light *light,
+                                      biref_integration *out)
+{
+    out->order_used[0] = out->order_used[1] = -1;
+    const biref_numeric_plan *plan = biref_integrator_plan(it);
+    if (!plan || !(sides & BIREF_SIDE_BOTH) || (sides & ~BIREF_SIDE_BOTH)) return BIREF_ERR_INVALID;
+    if (light->sp_model) {
+        /* The paper's light mixes from the four pairs: one pass over the wavelengths. */
+        biref_spectrum x;
+        biref_status s = biref_spectrum_numeric_dispersive(plan, m, geometry, theta, &x);
+        if (s != BIREF_OK) return s;
+        if (sides & BIREF_SIDE_TRANSMISSION) biref_spectrum_mix(x.T, light->w_in, light->mask, out->T);
+        if (sides & BIREF_SIDE_REFLECTION) biref_spectrum_mix(x.R, light->w_in, light->mask, out->R);
+    } else {
+        for (int w = 0; w < 2; w++) {
+            if (!(sides & (w ? BIREF_SIDE_REFLECTION : BIREF_SIDE_TRANSMISSION))) continue;
+            biref_status s = biref_spectrum_numeric_dispersive_polarized(
+                plan, m, geometry, theta, w ? BIREF_REFLECTION : BIREF_TRANSMISSION, (const double complex(*)[2])light->C,
+                light->has_analyzer ? (const double complex(*)[2])light->P : NULL, w ? out->R : out->T);
+            if (s != BIREF_OK) return s;
+        }
+    }
+    if ((sides & BIREF_SIDE_TRANSMISSION) && !finite3(out->T)) return BIREF_ERR_ILLCOND;
+    if ((sides & BIREF_SIDE_REFLECTION) && !finite3(out->R)) return BIREF_ERR_ILLCOND;
     return BIREF_OK;
 }

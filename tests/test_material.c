@@ -2,7 +2,6 @@
  * birefringences, group indices against finite differences, tables and their CSV files, the
  * refusal of unphysical formulas; slabs of dispersive materials against the transfer matrix per
  * wavelength, energy, an independent per-sample integration, and the flat-dispersion limit. */
-#define BIREF_EXPERIMENTAL_API /* numeric plans, to compare with the dispersive sums directly */
 #include <complex.h>
 #include <math.h>
 #include <stdio.h>

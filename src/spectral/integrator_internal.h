@@ -2,6 +2,7 @@
 #ifndef BIREF_INTEGRATOR_INTERNAL_H
 #define BIREF_INTEGRATOR_INTERNAL_H
 
+#include "biref/experimental.h" /* the library is built with BIREF_EXPERIMENTAL_API */
 #include "biref/integrator.h"
 #include "spectral/analytic_packet.h"
 #include "spectral/phase_prefilter.h"

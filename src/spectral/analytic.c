@@ -20,6 +20,53 @@
 
 static const double ONE[3] = {1.0, 1.0, 1.0};
 
+void biref_transmission_phases(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                               biref_phase_int *h0, biref_phase_int trip[2][2])
+{
+    const double complex *od = st->opl_down, *ou = st->opl_up;
+    /* Distinct optical path differences: the order-0 pair (eq. 24) and the four round trips
+     * (bottom reflection into y, up, top reflection into x', down): five table look-ups. */
+    biref_phase_eval(sp, fp, od[1] - conj(od[0]), (const int[4]){-1, 1, 0, 0}, h0);
+    for (int y = 0; y < 2; y++)
+        for (int x2 = 0; x2 < 2; x2++) {
+            int n[4] = {0, 0, 0, 0};
+            n[BIREF_LEG_DOWN_O + x2]++, n[BIREF_LEG_UP_O + y]++;
+            biref_phase_eval(sp, fp, ou[y] + od[x2], n, &trip[y][x2]);
+        }
+}
+
+void biref_reflection_phases(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                             biref_phase_int p1[4], biref_phase_int pair[4][4])
+{
+    const double complex *od = st->opl_down, *ou = st->opl_up;
+    /* Order-1 paths a = (down x, up y) = (a >> 1, a & 1): optical paths and pairwise
+     * differences; the same four sums serve as the extra round trip of the descendants. */
+    double complex opl1[4];
+    int legs1[4][4] = {{0}}; /* leg counts of the order-1 paths */
+    for (int a = 0; a < 4; a++) {
+        opl1[a] = od[a >> 1] + ou[a & 1];
+        legs1[a][BIREF_LEG_DOWN_O + (a >> 1)]++, legs1[a][BIREF_LEG_UP_O + (a & 1)]++;
+        biref_phase_eval(sp, fp, opl1[a], legs1[a], &p1[a]);
+    }
+    /* Pairs (0,1) and (2,3) differ by the same up-leg difference, (0,2) and (1,3) by the same
+     * down-leg difference: their table values coincide, only the decay of evanescent legs can
+     * differ. Six pairs, four look-ups. */
+    for (int a = 0; a < 4; a++)
+        for (int b = a + 1; b < 4; b++) {
+            double complex d = opl1[b] - conj(opl1[a]);
+            if ((a == 2 && b == 3) || (a == 1 && b == 3)) {
+                const biref_phase_int *twin = a == 2 ? &pair[0][1] : &pair[0][2];
+                pair[a][b] = *twin;
+                for (int j = 0; j < 3; j++)
+                    pair[a][b].att[j] = cimag(d) != 0.0 ? exp(-sp->k_centroid[j] * cimag(d)) : 1.0;
+            } else {
+                int n[4];
+                for (int l = 0; l < 4; l++) n[l] = legs1[b][l] - legs1[a][l];
+                biref_phase_eval(sp, fp, d, n, &pair[a][b]);
+            }
+        }
+}
+
 static void transmission(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
                          double E[2][2][3], double H[2][2][3])
 {
@@ -27,16 +74,8 @@ static void transmission(const biref_spectral *sp, const biref_slab_state *st, c
     const double complex(*r12)[2] = st->bottom.r_down, (*t12)[2] = st->bottom.t_down;
     const double complex *od = st->opl_down, *ou = st->opl_up;
 
-    /* Distinct optical path differences: the order-0 pair (eq. 24) and the four round trips
-     * (bottom reflection into y, up, top reflection into x', down): five table look-ups. */
     biref_phase_int h0, trip[2][2];
-    biref_phase_eval(sp, fp, od[1] - conj(od[0]), (const int[4]){-1, 1, 0, 0}, &h0);
-    for (int y = 0; y < 2; y++)
-        for (int x2 = 0; x2 < 2; x2++) {
-            int n[4] = {0, 0, 0, 0};
-            n[BIREF_LEG_DOWN_O + x2]++, n[BIREF_LEG_UP_O + y]++;
-            biref_phase_eval(sp, fp, ou[y] + od[x2], n, &trip[y][x2]);
-        }
+    biref_transmission_phases(sp, st, fp, &h0, trip);
 
     double ed[2][3], eu[2][3], w0[2][2][3], W[2][2][3];
     for (int m = 0; m < 2; m++) biref_leg_energy(sp, od[m], ed[m]), biref_leg_energy(sp, ou[m], eu[m]);
@@ -73,33 +112,8 @@ static void reflection(const biref_spectral *sp, const biref_slab_state *st, con
     const double complex(*r12)[2] = st->bottom.r_down;
     const double complex *od = st->opl_down, *ou = st->opl_up;
 
-    /* Order-1 paths a = (down x, up y) = (a >> 1, a & 1): optical paths and pairwise
-     * differences; the same four sums serve as the extra round trip of the descendants. */
-    double complex opl1[4];
     biref_phase_int p1[4], pair[4][4];
-    int legs1[4][4] = {{0}}; /* leg counts of the order-1 paths */
-    for (int a = 0; a < 4; a++) {
-        opl1[a] = od[a >> 1] + ou[a & 1];
-        legs1[a][BIREF_LEG_DOWN_O + (a >> 1)]++, legs1[a][BIREF_LEG_UP_O + (a & 1)]++;
-        biref_phase_eval(sp, fp, opl1[a], legs1[a], &p1[a]);
-    }
-    /* Pairs (0,1) and (2,3) differ by the same up-leg difference, (0,2) and (1,3) by the same
-     * down-leg difference: their table values coincide, only the decay of evanescent legs can
-     * differ. Six pairs, four look-ups. */
-    for (int a = 0; a < 4; a++)
-        for (int b = a + 1; b < 4; b++) {
-            double complex d = opl1[b] - conj(opl1[a]);
-            if ((a == 2 && b == 3) || (a == 1 && b == 3)) {
-                const biref_phase_int *twin = a == 2 ? &pair[0][1] : &pair[0][2];
-                pair[a][b] = *twin;
-                for (int j = 0; j < 3; j++)
-                    pair[a][b].att[j] = cimag(d) != 0.0 ? exp(-sp->k_centroid[j] * cimag(d)) : 1.0;
-            } else {
-                int n[4];
-                for (int l = 0; l < 4; l++) n[l] = legs1[b][l] - legs1[a][l];
-                biref_phase_eval(sp, fp, d, n, &pair[a][b]);
-            }
-        }
+    biref_reflection_phases(sp, st, fp, p1, pair);
 
     double ed[2][3], eu[2][3], u0[2][2][3], U[2][2][3];
     for (int m = 0; m < 2; m++) biref_leg_energy(sp, od[m], ed[m]), biref_leg_energy(sp, ou[m], eu[m]);
@@ -202,6 +216,12 @@ void biref_analytic_paper_terms(const biref_spectral *sp, const biref_slab_state
                                 double H[2][2][3])
 {
     paper_terms(sp, st, NULL, which, E, H);
+}
+
+void biref_analytic_paper_terms_footprint(const biref_spectral *sp, const biref_slab_state *st,
+                                          const biref_opl_footprint *fp, int which, double E[2][2][3], double H[2][2][3])
+{
+    paper_terms(sp, st, fp, which, E, H);
 }
 
 void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],

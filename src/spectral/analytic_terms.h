@@ -72,13 +72,28 @@ static inline void biref_add_re_integral(double out[3], const double weight[3], 
     for (int j = 0; j < 3; j++) out[j] += weight[j] * p->att[j] * (a * p->c[j] - b * p->s[j]);
 }
 
-/* The leg counts of the order-1 reflection paths a = (down a >> 1, up a & 1), which are also
- * transmission's round trips (up y, down x'), and the difference of two such paths. */
-static inline void biref_order1_legs(int a, int n[4])
-{
-    n[0] = n[1] = n[2] = n[3] = 0;
-    n[BIREF_LEG_DOWN_O + (a >> 1)]++;
-    n[BIREF_LEG_UP_O + (a & 1)]++;
-}
+/* The table look-ups of one direction (analytic.c), shared by the paper's light and the general
+ * one (analytic_general.c). Transmission: h0 the order-0 pair (eq. 24), trip[y][x'] the round
+ * trip (bottom reflection into up mode y, top reflection into down mode x'). Reflection: p1[a]
+ * the order-1 path a = (down a >> 1, up a & 1), which is also the descendants' extra round trip;
+ * pair[a][b] (a < b) the pairs of order-1 paths. */
+void biref_transmission_phases(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                               biref_phase_int *h0, biref_phase_int trip[2][2]);
+void biref_reflection_phases(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                             biref_phase_int p1[4], biref_phase_int pair[4][4]);
+
+/* The analytic method for a general light (analytic_general.c): incident coherency C, analyzer P
+ * (NULL: none), for which = BIREF_TRANSMISSION or BIREF_REFLECTION, with every phase integral
+ * averaged over the footprint fp (NULL: point values). The shader's formulas (docs/GPU.md); a
+ * negative result is moved towards the incoherent path energy. */
+void biref_analytic_general(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                            int which, const double complex C[2][2], const double complex P[2][2], double xyz[3]);
+/* Its two terms, S = E + 2H (eqs. 19, 25), in every regime and without the limit (tests). */
+void biref_analytic_general_terms(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                                  int which, const double complex C[2][2], const double complex P[2][2], double E[3],
+                                  double H[3]);
+/* biref_analytic_paper_terms with every phase integral averaged over the footprint fp (tests). */
+void biref_analytic_paper_terms_footprint(const biref_spectral *sp, const biref_slab_state *st,
+                                          const biref_opl_footprint *fp, int which, double E[2][2][3], double H[2][2][3]);
 
 #endif

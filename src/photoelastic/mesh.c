@@ -19,10 +19,6 @@
 #define MAX_FILE_BYTES ((size_t)1 << 31)
 #define MAX_FIELDS 256
 #define MAX_NODES 20000000L
-/* A kilometre and a terapascal are beyond any part in a polariscope; within them, spans,
- * areas and fringe orders stay finite. */
-#define NODE_MAX_M 1e3
-#define NODE_MAX_PA 1e12
 
 typedef struct {
     double x0, y0;       /* first vertex */
@@ -128,8 +124,11 @@ static int split_fields(const char *b, const char *e, char delim, const char *fb
     return n;
 }
 
-/* Strict number: the whole field. 0 ok, 1 empty, 2 not a number, 3 not finite, 4 too long. */
-static int parse_number(const char *b, const char *e, double *out, char buf[64])
+/* Strict number: the whole field, times scale, at most max in magnitude (1 km, 1 TPa: beyond any
+ * part in a polariscope; within them spans, areas and fringe orders stay finite). 0 ok, else WHY's index. */
+static const char *const WHY[] = {"", "empty field", "not a number", "not a finite number", "too long for a number",
+                                  "out of range (beyond 1 km, 1 TPa)"};
+static int parse_number(const char *b, const char *e, double scale, double max, double *out, char buf[64])
 {
     size_t n = (size_t)(e - b);
     if (n == 0) return 1;
@@ -142,8 +141,8 @@ static int parse_number(const char *b, const char *e, double *out, char buf[64])
     double v = strtod(buf, &endp);
     if (endp == buf || *endp != '\0') return 2;
     if (!isfinite(v) || errno == ERANGE) return 3;
-    *out = v;
-    return 0;
+    *out = v * scale;
+    return fabs(*out) <= max ? 0 : 5;
 }
 
 static int name_is(const char *b, const char *e, const char *name)
@@ -159,7 +158,8 @@ static int looks_numeric(const char *b, const char *e)
 {
     char buf[64];
     double v;
-    return parse_number(b, e, &v, buf) != 2 && e > b;
+    const int why = parse_number(b, e, 1.0, INFINITY, &v, buf);
+    return why != 2 && why != 4 && e > b;
 }
 
 /* "syy (S22)" or "syy". */
@@ -286,10 +286,9 @@ static biref_status delaunay(biref_pe_mesh *m, const double lo[2], const double 
     biref_status st;
     if (code == qh_ERRmem)
         st = biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory in the triangulation (qhull)");
-    else if (code == qh_ERRsingular || code == qh_ERRprec)
-        st = biref_fail(msg, msg_len, "cannot triangulate the nodes: they do not span an area (all on one line?)");
     else if (code)
-        st = biref_fail(msg, msg_len, "cannot triangulate the nodes (qhull error %d)", code);
+        st = biref_fail(msg, msg_len, "cannot triangulate the nodes (qhull error %d%s)", code,
+                        code == qh_ERRsingular || code == qh_ERRprec ? ": they do not span an area, all on one line?" : "");
     else
         st = collect_triangles(qh, m, 1e-14 * (hi[0] - lo[0]) * (hi[1] - lo[1]) + 1e-300, msg, msg_len);
     qh_freeqhull(qh, !qh_ALL);
@@ -421,19 +420,11 @@ static biref_status parse_node(const char *const db[], const char *const de[], c
     double v[NROLE];
     for (int r = 0; r < NROLE; r++) {
         char buf[64];
-        int why = parse_number(db[col[r]], de[col[r]], &v[r], buf);
-        const double scale = r < 2 ? fmt->length_m : fmt->stress_pa, max = r < 2 ? NODE_MAX_M : NODE_MAX_PA;
-        if (why == 1) return biref_fail(msg, msg_len, "line %ld, column %s: empty field", line, label[r]);
-        if (why == 2) return biref_fail(msg, msg_len, "line %ld, column %s: not a number: '%s'", line, label[r], buf);
-        if (why == 3)
-            return biref_fail(msg, msg_len, "line %ld, column %s: not a finite number: '%s'", line, label[r], buf);
-        if (why == 4)
-            return biref_fail(msg, msg_len, "line %ld, column %s: a field of %ld characters is too long for a number: '%s...'",
-                              line, label[r], (long)(de[col[r]] - db[col[r]]), buf);
-        if (!(fabs(v[r] * scale) <= max))
-            return biref_fail(msg, msg_len, "line %ld, column %s: %s is out of range (at most %g %s in magnitude)", line,
-                              label[r], buf, max / scale, r < 2 ? "in the file's length unit" : "in the file's stress unit");
-        v[r] *= scale;
+        int why = parse_number(db[col[r]], de[col[r]], r < 2 ? fmt->length_m : fmt->stress_pa,
+                               r < 2 ? 1e3 : 1e12, &v[r], buf);
+        if (why) /* "line 7, column syy (S22): not a number: 'abc'" */
+            return biref_fail(msg, msg_len, "line %ld, column %s: %s%s%s%s", line, label[r], WHY[why], why > 1 ? ": '" : "",
+                              why > 1 ? buf : "", why == 4 ? "...'" : why > 1 ? "'" : "");
     }
     nr->x = v[ROLE_X];
     nr->y = v[ROLE_Y];
@@ -632,17 +623,10 @@ biref_status biref_pe_mesh_boundary_parse(biref_pe_mesh *m, const char *text, si
         double v[2];
         for (int c = 0; c < 2 && st == BIREF_OK; c++) {
             char buf[64];
-            int why = parse_number(fb[c], fe[c], &v[c], buf);
-            if (!why && !(fabs(v[c] * length_m) <= NODE_MAX_M)) why = 5;
+            int why = parse_number(fb[c], fe[c], length_m, 1e3, &v[c], buf);
             if (why)
-                st = biref_fail(msg, msg_len, "line %ld, column %s: %s: '%s%s'", rd.line, c ? "y" : "x",
-                                why == 1   ? "empty field"
-                                : why == 2 ? "not a number"
-                                : why == 3 ? "not a finite number"
-                                : why == 4 ? "too long for a number"
-                                           : "out of range (more than a kilometre)",
-                                buf, why == 4 ? "..." : "");
-            v[c] *= length_m;
+                st = biref_fail(msg, msg_len, "line %ld, column %s: %s: '%s%s'", rd.line, c ? "y" : "x", WHY[why], buf,
+                                why == 4 ? "..." : "");
         }
         if (st != BIREF_OK) break;
         if (nl == 0 || blank) {

@@ -207,16 +207,16 @@ static const cli_opt OPTS[] = {
     CLI_FLAG("tint", 0, F(tint), "mono: tint the grey levels with the colour of that wavelength"),
     CLI_TEXT("\nPicture:\n"),
     CLI_STRING("output", 'o', "FILE", F(out), "write an sRGB PNG (or what --format, --map, --phase-steps say)"),
-    CLI_INT("size", "N", F(size), 1, 8192, "pixels along the longer side of the picture (default 512)"),
+    CLI_INT("size", "N", F(size), 1, BIREF_PE_MAX_SIDE, "pixels along the longer side of the picture (default 512)"),
     CLI_CUSTOM("window-mm", "x0,y0,x1,y1", OPT_WINDOW,
                "show the window with opposite corners (x0, y0) and (x1, y1) of\n"
                "the plate instead of the whole part (|x|, |y| <= 1e6 mm)"),
-    CLI_DOUBLE("tilt-deg", "A", F(tilt_deg), 0, 80,
+    CLI_DOUBLE("tilt-deg", "A", F(tilt_deg), 0, BIREF_PE_MAX_TILT_DEG,
                "view the plate A degrees off its normal (turned about its x axis;\n"
                "0-80, default 0). Uses the general slab path (about 15x slower) and\n"
                "the uniaxial approximation, exact only at 0 or where one principal\n"
                "stress vanishes (docs/PHOTOELASTICITY.md)"),
-    CLI_INT("supersample", "K", F(supersample), 1, 8, "K x K samples per pixel (default 2)"),
+    CLI_INT("supersample", "K", F(supersample), 1, BIREF_PE_MAX_SUPERSAMPLE, "K x K samples per pixel, 1-64 (default 2)"),
     CLI_CUSTOM("antialias", "A", OPT_ANTIALIAS,
                "prefilter (default): each sample averages the fringes over its\n"
                "footprint in retardation (no moire where fringes crowd, e.g. at the\n"

@@ -264,6 +264,9 @@ typedef struct {
 } biref_pe_image_opts;
 
 #define BIREF_PE_MAX_SUPERSAMPLE 64
+/* Largest picture side in pixels and largest tilt of the view (degrees). */
+#define BIREF_PE_MAX_SIDE 8192
+#define BIREF_PE_MAX_TILT_DEG 80.0
 
 /* Renders field f seen through setup s: XYZ floats (3 per pixel, row-major, top row = frame's
  * ymax), white E = (1,1,1); the frame (plate coordinates) fills the image, so with a tilt the

@@ -10,6 +10,7 @@ axis is given in that frame and normalised by biref.
 """
 import json as _json
 import math as _math
+import operator as _operator
 import os as _os
 import warnings as _warnings
 
@@ -52,6 +53,15 @@ def _call(what, fn, *args):
     if s != _lib.BIREF_OK:
         text = _ffi.string(msg).decode(errors="replace") or _status(s)
         raise (ValueError if s == _lib.BIREF_ERR_INVALID else BirefError)(f"{what}: {text}")
+
+
+def _int(name, v):
+    """An integer argument (Python or numpy), as the command line's integer options: 2.5 or 2.0 is
+    refused, not truncated."""
+    try:
+        return _operator.index(v)
+    except TypeError:
+        raise ValueError(f"{name}: expected an integer, got {v!r}") from None
 
 
 def _thickness_nm(thickness_mm, thickness_um, thickness_nm):
@@ -408,14 +418,14 @@ def spectrum(eta_o=None, eta_e=None, axis=None, thickness_mm=None, thickness_um=
     eopts = _ffi.new("biref_expansion_opts *")
     _lib.biref_expansion_opts_default(eopts)
     if order is not None:
-        if not 0 <= int(order) <= 8:
+        if not 0 <= _int("order", order) <= 8:
             raise ValueError("order: must be 0-8")
-        eopts.order = int(order)
+        eopts.order = _int("order", order)
     if tolerance is not None:
         if not 0 < float(tolerance) < 1:
             raise ValueError("tolerance: must be in (0, 1)")
         eopts.tolerance = float(tolerance)
-    n_samples = (int(samples) if samples is not None else 64) if m == _lib.BIREF_METHOD_NUMERIC else \
+    n_samples = (_int("samples", samples) if samples is not None else 64) if m == _lib.BIREF_METHOD_NUMERIC else \
         16384 if m == _lib.BIREF_METHOD_GROUND_TRUTH else 0
     if m == _lib.BIREF_METHOD_NUMERIC and not 1 <= n_samples <= 65536:
         raise ValueError("samples: must be between 1 and 65536")
@@ -577,10 +587,8 @@ def render(scene, method="analytic", width=None, height=None, samples=None, orde
     if s != _lib.BIREF_OK:
         _msg_error(s, msg)
     for name, v in (("width", width), ("height", height)):
-        if v is not None:
-            if int(v) != v or not 1 <= int(v) <= 16384:
-                raise ValueError(f"{name}: must be an integer between 1 and 16384")
-            setattr(sc.camera, name, int(v))
+        if v is not None:  # the range is the library's (biref_scene_validate), as on the command line
+            setattr(sc.camera, name, max(-1, min(_int(name, v), 1 << 30)))
     s = _lib.biref_scene_validate(sc, msg, _MSG)
     if s != _lib.BIREF_OK:
         _msg_error(s, msg)
@@ -590,15 +598,15 @@ def render(scene, method="analytic", width=None, height=None, samples=None, orde
     if samples is not None:
         if opt.method != _lib.BIREF_METHOD_NUMERIC:
             raise ValueError(f"samples: only valid with method numeric (method is {method})")
-        opt.samples = int(samples)
+        opt.samples = _int("samples", samples)
     if order is not None or tolerance is not None:
         if opt.method != _lib.BIREF_METHOD_EXPANSION:
             raise ValueError("order/tolerance: only valid with method expansion")
         if order is not None:
-            opt.expansion.order = int(order)
+            opt.expansion.order = _int("order", order)
         if tolerance is not None:
             opt.expansion.tolerance = float(tolerance)
-    opt.threads = int(threads)
+    opt.threads = max(-1, min(_int("threads", threads), 1 << 30))
     rp = _ffi.new("biref_renderer **")
     s = _lib.biref_renderer_create(sc, opt, rp, msg, _MSG)
     if s != _lib.BIREF_OK:
@@ -611,12 +619,53 @@ def render(scene, method="analytic", width=None, height=None, samples=None, orde
 
 
 _PRESETS = {"disk": 0, "hole": 1, "beam": 2}
+# The geometry arguments, their defaults and the presets they apply to (as the command line's).
+_GEOMETRY = {"radius_mm": (None, ("disk", "hole")), "load_N": (500.0, ("disk",)), "stress_MPa": (4.0, ("hole",)),
+             "width_mm": (60.0, ("hole",)), "height_mm": (None, ("hole",)), "tension_deg": (0.0, ("hole",)),
+             "length_mm": (100.0, ("beam",)), "depth_mm": (20.0, ("beam",)), "moment_Nmm": (2000.0, ("beam",))}
 
 
-def photoelastic(preset="disk", stress_grid=None, thickness_mm=None, radius_mm=None, load_N=500.0, stress_MPa=4.0,
-                 width_mm=60.0, height_mm=None, tension_deg=0.0, length_mm=100.0, depth_mm=20.0, moment_Nmm=2000.0,
+def _pe_field(preset, stress_grid, thickness_mm, geometry, msg):
+    """The stress field (and the grid it keeps alive) of photoelastic()'s specimen."""
+    if preset is not None and stress_grid is not None:
+        raise ValueError("preset and stress_grid exclude each other")
+    specimen = "stress_grid" if stress_grid is not None else "disk" if preset is None else preset
+    if specimen != "stress_grid" and specimen not in _PRESETS:
+        raise ValueError(f"preset: expected disk, hole or beam (or stress_grid), got {preset!r}")
+    for name, v in geometry.items():
+        if v is not None and specimen not in _GEOMETRY[name][1]:
+            raise ValueError(f"{name} does not apply to {specimen}")
+    g = {name: _GEOMETRY[name][0] if v is None else float(v) for name, v in geometry.items()}
+    mm = 1e-3
+    fld = _ffi.new("biref_pe_field *")
+    grid = None
+    h = ((3.0 if specimen == "hole" else 6.0) if thickness_mm is None else float(thickness_mm)) * mm
+    if specimen == "stress_grid":
+        gp = _ffi.new("biref_pe_grid **")
+        s = _lib.biref_pe_grid_load(str(stress_grid).encode(), gp, msg, _MSG)
+        if s != _lib.BIREF_OK:
+            _msg_error(s, msg)
+        grid = _ffi.gc(gp[0], _lib.biref_pe_grid_destroy)
+        s = _lib.biref_pe_field_grid(fld, grid, h, msg, _MSG)
+    elif specimen == "disk":
+        r = 25.0 if g["radius_mm"] is None else g["radius_mm"]
+        s = _lib.biref_pe_field_disk(fld, r * mm, h, g["load_N"], msg, _MSG)
+    elif specimen == "hole":
+        r = 5.0 if g["radius_mm"] is None else g["radius_mm"]
+        w = g["width_mm"]
+        s = _lib.biref_pe_field_hole(fld, r * mm, w * mm, (w if g["height_mm"] is None else g["height_mm"]) * mm, h,
+                                     g["stress_MPa"] * 1e6, g["tension_deg"] * _math.pi / 180.0, msg, _MSG)
+    else:
+        s = _lib.biref_pe_field_beam(fld, g["length_mm"] * mm, g["depth_mm"] * mm, h, g["moment_Nmm"] * 1e-3, msg, _MSG)
+    if s != _lib.BIREF_OK:
+        _msg_error(s, msg)
+    return fld, grid, h
+
+
+def photoelastic(preset=None, stress_grid=None, thickness_mm=None, radius_mm=None, load_N=None, stress_MPa=None,
+                 width_mm=None, height_mm=None, tension_deg=None, length_mm=None, depth_mm=None, moment_Nmm=None,
                  material="polycarbonate", n0=None, C_brewster=None, eta_i=1.0, polariscope="circular",
-                 field="dark", polarizer_deg=0.0, light="white", lambda_nm=589.0, size=512, supersample=2,
+                 field="dark", polarizer_deg=0.0, light="white", lambda_nm=None, size=512, supersample=2,
                  tilt_deg=0.0, exposure=1.0, threads=0, space="linear_srgb", antialias="prefilter"):
     """A stressed plate in a polariscope, like ``biref photoelastic -o``: a numpy float array of
     shape (height, width, 3) whose longer side has ``size`` pixels.
@@ -624,14 +673,19 @@ def photoelastic(preset="disk", stress_grid=None, thickness_mm=None, radius_mm=N
     antialias "prefilter" (default; a normal view averages each sample's fringes over its
     footprint) or "none" (the fringes at the sample points), as ``--antialias``.
 
-    preset "disk" (radius_mm 25, load_N), "hole" (radius_mm 5, width_mm, height_mm, stress_MPa,
-    tension_deg) or "beam" (length_mm, depth_mm, moment_Nmm); or stress_grid, a CSV file with
-    columns x_mm,y_mm,sxx_MPa,syy_MPa,txy_MPa. Units and defaults as on the command line.
+    preset "disk" (the default; radius_mm 25, load_N 500), "hole" (radius_mm 5, width_mm 60,
+    height_mm, stress_MPa 4, tension_deg 0) or "beam" (length_mm 100, depth_mm 20, moment_Nmm
+    2000); or stress_grid, a CSV file with columns x_mm,y_mm,sxx_MPa,syy_MPa,txy_MPa. Units,
+    defaults and refusals as on the command line: a geometry argument of another preset, preset
+    with stress_grid, lambda_nm (default 589) without light "mono" are errors, and the picture's
+    ranges are the library's.
     """
     if space not in _SPACES:
         raise ValueError(f"space: expected one of {', '.join(_SPACES)}, got {space!r}")
     if antialias not in ("prefilter", "none"):
         raise ValueError(f"antialias: expected prefilter or none, got {antialias!r}")
+    if lambda_nm is not None and light != "mono":
+        raise ValueError("lambda_nm needs light 'mono' (white-light fringe orders are quoted at 550 nm)")
     setup = _ffi.new("biref_pe_setup *")
     if _lib.biref_pe_material_preset(str(material).encode(), _ffi.addressof(setup, "material")) != _lib.BIREF_OK:
         names = [_ffi.string(_lib.biref_pe_material_at(i).name).decode() for i in range(_lib.biref_pe_material_count())]
@@ -648,54 +702,29 @@ def photoelastic(preset="disk", stress_grid=None, thickness_mm=None, radius_mm=N
     s = _lib.biref_pe_material_check(_ffi.addressof(setup, "material"), msg, _MSG)
     if s != _lib.BIREF_OK:
         raise ValueError("material: " + _ffi.string(msg).decode())
-    mm = 1e-3
-    fld = _ffi.new("biref_pe_field *")
-    grid = None
-    if stress_grid is not None:
-        gp = _ffi.new("biref_pe_grid **")
-        s = _lib.biref_pe_grid_load(str(stress_grid).encode(), gp, msg, _MSG)
-        if s != _lib.BIREF_OK:
-            _msg_error(s, msg)
-        grid = _ffi.gc(gp[0], _lib.biref_pe_grid_destroy)
-        h = (6.0 if thickness_mm is None else float(thickness_mm)) * mm
-        s = _lib.biref_pe_field_grid(fld, grid, h, msg, _MSG)
-    elif preset in _PRESETS:
-        h = ((3.0 if preset == "hole" else 6.0) if thickness_mm is None else float(thickness_mm)) * mm
-        if preset == "disk":
-            s = _lib.biref_pe_field_disk(fld, (25.0 if radius_mm is None else radius_mm) * mm, h, float(load_N), msg,
-                                         _MSG)
-        elif preset == "hole":
-            s = _lib.biref_pe_field_hole(fld, (5.0 if radius_mm is None else radius_mm) * mm, width_mm * mm,
-                                         (width_mm if height_mm is None else height_mm) * mm, h, stress_MPa * 1e6,
-                                         tension_deg * _math.pi / 180.0, msg, _MSG)
-        else:
-            s = _lib.biref_pe_field_beam(fld, length_mm * mm, depth_mm * mm, h, moment_Nmm * 1e-3, msg, _MSG)
-    else:
-        raise ValueError(f"preset: expected disk, hole or beam (or stress_grid), got {preset!r}")
-    if s != _lib.BIREF_OK:
-        _msg_error(s, msg)
+    geometry = dict(radius_mm=radius_mm, load_N=load_N, stress_MPa=stress_MPa, width_mm=width_mm, height_mm=height_mm,
+                    tension_deg=tension_deg, length_mm=length_mm, depth_mm=depth_mm, moment_Nmm=moment_Nmm)
+    fld, grid, h = _pe_field(preset, stress_grid, thickness_mm, geometry, msg)
     kinds = {"plane": _lib.BIREF_PE_PLANE, "circular": _lib.BIREF_PE_CIRCULAR}
     fields = {"dark": _lib.BIREF_PE_DARK, "light": _lib.BIREF_PE_LIGHT}
     lights = {"white": _lib.BIREF_PE_WHITE, "mono": _lib.BIREF_PE_MONO}
     for name, v, table in (("polariscope", polariscope, kinds), ("field", field, fields), ("light", light, lights)):
         if v not in table:
             raise ValueError(f"{name}: expected {' or '.join(table)}, got {v!r}")
-    if not (0.0 <= float(tilt_deg) <= 80.0):
-        raise ValueError("tilt_deg: must be in [0, 80]")
-    if not (float(exposure) > 0 and _math.isfinite(exposure)):
-        raise ValueError("exposure: must be positive")
-    if not (1 <= int(supersample) <= 8) or not (1 <= int(size) <= 16384):
-        raise ValueError("supersample must be 1-8 and size 1-16384")
-    if not float(lambda_nm) > 0:
-        raise ValueError("lambda_nm: must be positive")
+    if not 0 < float(exposure) <= 1e30:  # as --exposure; the rest is checked by the library
+        raise ValueError(f"exposure: must be positive and at most 1e30, got {exposure!r}")
+    size = _int("size", size)
+    if not 1 <= size <= 8192:  # as --size; the picture's own size is the library's check
+        raise ValueError(f"size: must be between 1 and 8192, got {size}")
     setup.thickness = h
     setup.eta_i = float(eta_i)
     setup.light = lights[light]
-    setup.lambda_nm = float(lambda_nm)
+    setup.lambda_nm = 589.0 if lambda_nm is None else float(lambda_nm)
     _lib.biref_pe_polariscope_make(kinds[polariscope], fields[field], float(polarizer_deg) * _math.pi / 180.0,
                                    _ffi.addressof(setup, "pol"))
     io = _ffi.new("biref_pe_image_opts *")
-    io.supersample, io.threads = int(supersample), int(threads)
+    io.supersample = max(-1, min(_int("supersample", supersample), 1 << 30))
+    io.threads = max(-1, min(_int("threads", threads), 1 << 30))
     io.tint = [exposure] * 3
     io.tilt = float(tilt_deg) * _math.pi / 180.0
     fw, fh = fld.frame[1] - fld.frame[0], (fld.frame[3] - fld.frame[2]) * _math.cos(io.tilt)

@@ -244,3 +244,47 @@ def test_spectrum_with_a_material_matches_cli():
         biref.slab(material="unobtainium", axis=(0, 0, 1), thickness_um=10)
     with pytest.raises(ValueError, match="eta_o"):
         biref.slab(eta_o=1.5, material="calcite", axis=(0, 0, 1), thickness_um=10)
+
+
+# The bindings refuse what the command line refuses, each with one message (the library's where
+# the library checks): (photoelastic arguments, text of the message, the command line's options).
+GRID = os.path.join(ROOT, "examples", "photoelastic", "gradient.csv")
+PE_REFUSALS = [
+    (dict(preset="disk", stress_grid=GRID), "preset and stress_grid exclude each other",
+     ["--preset", "disk", "--stress-grid", GRID]),
+    (dict(preset="disk", stress_MPa=5.0), "stress_MPa does not apply to disk", ["--preset", "disk", "--stress-MPa", "5"]),
+    (dict(stress_grid=GRID, radius_mm=3.0), "radius_mm does not apply to stress_grid",
+     ["--stress-grid", GRID, "--radius-mm", "3"]),
+    (dict(light="mono", lambda_nm=np.inf), "wavelength", ["--light", "mono", "--lambda-nm", "inf"]),
+    (dict(light="mono", lambda_nm=100.0), "wavelength", ["--light", "mono", "--lambda-nm", "100"]),
+    (dict(lambda_nm=600.0), "lambda_nm needs light 'mono'", ["--lambda-nm", "600"]),
+    (dict(supersample=2.5), "supersample: expected an integer", ["--supersample", "2.5"]),
+    (dict(supersample=65), "supersampl", ["--supersample", "65"]),
+    (dict(threads=10000), "threads", ["--threads", "10000"]),
+    (dict(size=9000), "size", ["--size", "9000"]),
+    (dict(tilt_deg=85.0), "tilt", ["--tilt-deg", "85"]),
+    (dict(eta_i=9.0), "eta_i", ["--eta-i", "9"]),
+    (dict(exposure=1e31), "exposure", ["--exposure", "1e31"]),
+]
+
+
+@pytest.mark.parametrize("kwargs, text, args", PE_REFUSALS, ids=[c[1][:30] for c in PE_REFUSALS])
+def test_photoelastic_refuses_what_the_command_line_refuses(kwargs, text, args):
+    call = dict(size=16, supersample=1)
+    call.update(kwargs)
+    with pytest.raises(ValueError, match=text):
+        biref.photoelastic(**call)
+    if CLI:
+        r = subprocess.run([CLI, "photoelastic", *args, "--profile", "0,0,1,1"], capture_output=True, text=True)
+        assert r.returncode == 2 and len(r.stderr.splitlines()) == 1, (args, r.stderr)
+
+
+def test_integer_arguments_are_not_truncated():
+    for call in (lambda: biref.spectrum(**SLAB, thickness_um=20, method="numeric", samples=2.5),
+                 lambda: biref.render(os.path.join(ROOT, "examples", "default.json"), width=8, height=8.0),
+                 lambda: biref.render(os.path.join(ROOT, "examples", "default.json"), width=8, height=8, threads=1.5)):
+        with pytest.raises(ValueError, match="expected an integer"):
+            call()
+    assert biref.render(os.path.join(ROOT, "examples", "default.json"), width=np.int64(8), height=8).shape == (8, 8, 3)
+    with pytest.raises(ValueError, match="threads"):
+        biref.render(os.path.join(ROOT, "examples", "default.json"), width=8, height=8, threads=10000)

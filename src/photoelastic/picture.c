@@ -26,14 +26,26 @@ static biref_status check_picture(const biref_pe_setup *s, const biref_spectral 
     if (!s || !f || !opt || !xyz) return biref_fail(msg, msg_len, "no setup, field, options or output");
     if (opt->width < 1 || opt->height < 1)
         return biref_fail(msg, msg_len, "%d x %d pixels: the picture needs at least 1 x 1", opt->width, opt->height);
+    if (opt->width > BIREF_PE_MAX_SIDE || opt->height > BIREF_PE_MAX_SIDE)
+        return biref_fail(msg, msg_len, "%d x %d pixels: at most %d on a side", opt->width, opt->height,
+                          BIREF_PE_MAX_SIDE);
+    if (opt->threads < 0 || opt->threads > 1024)
+        return biref_fail(msg, msg_len, "threads %d: expected 0 (all cores) to 1024", opt->threads);
+    /* The setup's ranges, as the command line's options (one validation for every caller). */
+    if (s->light == BIREF_PE_MONO && !(s->lambda_nm >= 200.0 && s->lambda_nm <= 2000.0))
+        return biref_fail(msg, msg_len, "wavelength %g nm: expected 200 to 2000", s->lambda_nm);
+    if (!(s->eta_i >= 1.0 && s->eta_i <= 5.0))
+        return biref_fail(msg, msg_len, "eta_i %g: expected 1 to 5 (the index around the plate)", s->eta_i);
+    if (!(s->thickness > 0.0 && s->thickness <= 1.0))
+        return biref_fail(msg, msg_len, "thickness %g m: expected more than 0 and at most 1 m", s->thickness);
     if (opt->supersample < 1 || opt->supersample > BIREF_PE_MAX_SUPERSAMPLE)
         return biref_fail(msg, msg_len, "supersampling %d: expected 1 to %d", opt->supersample,
                           BIREF_PE_MAX_SUPERSAMPLE);
     if (s->light == BIREF_PE_WHITE && !sp) return biref_fail(msg, msg_len, "white light needs a spectral context");
     if (!(f->frame[1] > f->frame[0] && f->frame[3] > f->frame[2]))
         return biref_fail(msg, msg_len, "the field's frame is empty");
-    if (!(opt->tilt >= 0.0 && opt->tilt <= 89.0 * M_PI / 180.0))
-        return biref_fail(msg, msg_len, "tilt %g deg: expected 0 to 89", opt->tilt * 180.0 / M_PI);
+    if (!(opt->tilt >= 0.0 && opt->tilt <= BIREF_PE_MAX_TILT_DEG * M_PI / 180.0))
+        return biref_fail(msg, msg_len, "tilt %g deg: expected 0 to %g", opt->tilt * 180.0 / M_PI, BIREF_PE_MAX_TILT_DEG);
     return BIREF_OK;
 }
 

@@ -3,20 +3,55 @@
 // ?scene=NAME&width=W&height=H&view=canvas shows only the canvas at W x H with that example's
 // camera and sets document.title to "biref ready" once the frame is drawn. The first slab's
 // controls may be set from the query too: eta_o, eta_e, thickness_um, axis_tilt, axis_az (deg).
+// Every query value is checked before anything is drawn: a bad one is an error shown in the page
+// (and in document.title as "biref error: ..."), never a silent default or clamp.
 import { shaderSource, table, plans, presets } from './biref_data.js';
 
 const MAX_SLABS = 8, MAX_PANELS = 4;
-const params = new URLSearchParams(location.search);
-const canvasOnly = params.get('view') === 'canvas';
+// The largest canvas side: 4096 x 4096 is 16.7 megapixels in one pass, which software WebGL
+// (no GPU) draws in tens of seconds; the command line's 8192 x 8192 took minutes there.
+const MAX_SIDE = 4096;
 const $ = (id) => document.getElementById(id);
 const canvas = $('view');
-if (canvasOnly) document.body.classList.add('canvas-only');
 
 function fail(text) {
-  $('error').textContent = text;
+  $('fatal').textContent = text;
   document.title = 'biref error: ' + text.replace(/\s+/g, ' ').slice(0, 400);
   throw new Error(text);
 }
+// Anything that still goes wrong is shown in the page too, not only in the console.
+window.addEventListener('error', (e) => {
+  if (!document.title.startsWith('biref error')) {
+    $('fatal').textContent = String(e.message || e.error);
+    document.title = 'biref error: ' + String(e.message || e.error).slice(0, 400);
+  }
+});
+
+// ---------------------------------------------------------------------------- the query
+// Each key once, known keys only, numbers in decimal within the controls' ranges.
+const QUERY_NUMBERS = {
+  width: [1, MAX_SIDE, true], height: [1, MAX_SIDE, true], eta_o: [1.2, 2.5], eta_e: [1.2, 2.5],
+  thickness_um: [1, 10000], axis_tilt: [0, 180], axis_az: [-180, 180],
+};
+const params = new Map();
+for (const [key, value] of new URLSearchParams(location.search)) {
+  if (key !== 'scene' && key !== 'view' && !Object.hasOwn(QUERY_NUMBERS, key))
+    fail(`unknown query key '${key}' (known: scene, view, ${Object.keys(QUERY_NUMBERS).join(', ')})`);
+  if (params.has(key)) fail(`query key '${key}' given twice`);
+  if (Object.hasOwn(QUERY_NUMBERS, key)) {
+    const [lo, hi, integer] = QUERY_NUMBERS[key];
+    const re = integer ? /^[0-9]+$/ : /^[+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?$/;
+    const v = Number(value);
+    if (!re.test(value) || !(v >= lo && v <= hi))
+      fail(`${key}: expected ${integer ? 'an integer' : 'a number'} from ${lo} to ${hi}, got '${value}'`);
+  }
+  params.set(key, value);
+}
+if (params.has('view') && params.get('view') !== 'canvas') fail(`view: expected canvas, got '${params.get('view')}'`);
+if (params.has('scene') && !Object.hasOwn(presets, params.get('scene')))
+  fail(`unknown scene '${params.get('scene')}' (presets: ${Object.keys(presets).join(', ')})`);
+const canvasOnly = params.get('view') === 'canvas';
+if (canvasOnly) document.body.classList.add('canvas-only');
 
 // ---------------------------------------------------------------------------- WebGL set-up
 const gl = canvas.getContext('webgl2', { preserveDrawingBuffer: true, antialias: false, alpha: false });
@@ -72,13 +107,14 @@ const get3 = (name, i) => state.u[name][1].slice(3 * i, 3 * i + 3);
 const set3 = (name, i, v) => { for (let k = 0; k < 3; k++) state.u[name][1][3 * i + k] = v[k]; };
 
 function loadPreset(name) {
+  if (!Object.hasOwn(presets, name)) fail(`unknown scene '${name}' (presets: ${Object.keys(presets).join(', ')})`);
   const p = presets[name];
-  if (!p) fail(`unknown scene '${name}' (presets: ${Object.keys(presets).join(', ')})`);
   const u = JSON.parse(JSON.stringify(p.uniforms));
   if (u.u_n_slabs[1][0] > MAX_SLABS || u.u_n_panels[1][0] > MAX_PANELS)
     fail(`scene '${name}' has more than ${MAX_SLABS} slabs or ${MAX_PANELS} panels`);
-  const W = parseInt(params.get('width') || (canvasOnly ? p.camera.width : 640), 10);
-  const H = parseInt(params.get('height') || (canvasOnly ? p.camera.height : 360), 10);
+  // The query was checked above; a preset's own size is capped like it.
+  const W = Number(params.get('width') || Math.min(canvasOnly ? p.camera.width : 640, MAX_SIDE));
+  const H = Number(params.get('height') || Math.min(canvasOnly ? p.camera.height : 360, MAX_SIDE));
   const c = p.camera;
   const off = v3.sub(c.position, c.look_at);
   state = { name, u, axes: JSON.parse(JSON.stringify(p.axes)), W, H, cam: {

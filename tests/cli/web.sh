@@ -78,4 +78,25 @@ else
   mean=$(json_num mean "$tmpdir/out")
   awk -v m="$mean" 'BEGIN { exit !(m > 0.3) }' || { echo "FAIL (the comparison does not see the change: $mean)"; fails=$((fails + 1)); }
 fi
+# Every query value is checked before anything is drawn: a bad one is an error shown in the page
+# (and in the title), never "biref ready" on a blank, default or clamped canvas, nor an uncaught
+# exception with nothing shown.
+errs=(
+  "$url?scene=__proto__" "unknown scene '__proto__'"
+  "$url?scene=constructor&view=canvas" "unknown scene 'constructor'"
+  "$url?scene=fig9c&width=0&height=10&view=canvas" "width: expected an integer from 1 to 4096, got '0'"
+  "$url?scene=fig9c&width=-5" "width: expected an integer"
+  "$url?scene=fig9c&width=abc" "width: expected an integer"
+  "$url?scene=fig9c&width=1e9" "width: expected an integer"
+  "$url?scene=fig9c&height=5000" "height: expected an integer from 1 to 4096"
+  "$url?scene=fig9c&eta_o=9" "eta_o: expected a number from 1.2 to 2.5, got '9'"
+  "$url?scene=fig9c&thickness_um=0x10" "thickness_um: expected a number"
+  "$url?scene=fig9c&axis_tilt=%2010" "axis_tilt: expected a number"
+  "$url?scene=fig9c&view=gallery" "view: expected canvas"
+  "$url?scene=fig9c&widht=10" "unknown query key 'widht'"
+  "$url?scene=fig9c&width=10&width=20" "query key 'width' given twice"
+)
+if ! /usr/bin/python3 tests/web/screenshot.py $W $H --timeout 60 --errors "${errs[@]}" 2>"$tmpdir/errs.err"; then
+  echo "FAIL: query errors:"; sed 's/^/  /' "$tmpdir/errs.err"; fails=$((fails + 1))
+fi
 finish

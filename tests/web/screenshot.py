@@ -3,11 +3,15 @@
 over a pipe (--remote-debugging-pipe: Python's standard library is enough, no npm).
 
 usage: screenshot.py WIDTH HEIGHT URL OUT.png [URL OUT.png ...] [--chromium PATH] [--timeout S]
+       screenshot.py WIDTH HEIGHT --errors URL TEXT [URL TEXT ...]
 
 Loads each URL in turn in one browser (so compiled shaders are reused), waits until the page
 sets document.title to "biref ready" (the frame is drawn) and captures the top-left
 WIDTH x HEIGHT pixels into OUT.png. Exit 1 with one line on stderr if the page reports an error,
-never gets ready, or Chromium cannot start."""
+never gets ready, or Chromium cannot start.
+
+With --errors, each page must instead report an error: a title "biref error: ..." and the same
+message shown in the page (a visible element), both containing TEXT."""
 import argparse
 import base64
 import fcntl
@@ -59,6 +63,18 @@ def chromium_args(binary, profile, width, height):
             "--disable-quic", "--disable-default-apps", "--disable-extensions", "--mute-audio", "about:blank"]
 
 
+def check_error_page(cdp, sess, url, title, text):
+    """The page reports an error containing text in its title and in a visible element."""
+    if not title.startswith("biref error: ") or text not in title:
+        raise RuntimeError(f"{url}: expected an error with {text!r}, got the title {title!r}")
+    shown = cdp.call("Runtime.evaluate", {"returnByValue": True, "expression": (
+        "(() => { const e = document.getElementById('fatal');"
+        " return e && getComputedStyle(e).display !== 'none' && e.getClientRects().length ? e.textContent : ''; })()")},
+        sess)["result"].get("value", "")
+    if text not in shown:
+        raise RuntimeError(f"{url}: the error is not shown in the page (visible text: {shown!r})")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("width", type=int)
@@ -66,6 +82,7 @@ def main():
     ap.add_argument("pages", nargs="+", metavar="URL OUT.png")
     ap.add_argument("--chromium", default=shutil.which("chromium") or "/usr/bin/chromium")
     ap.add_argument("--timeout", type=float, default=180)
+    ap.add_argument("--errors", action="store_true", help="pairs of URL and the expected error text")
     a = ap.parse_args()
     if len(a.pages) % 2:
         ap.error("expected pairs of URL and OUT.png")
@@ -105,6 +122,9 @@ def main():
                 if title == "biref ready" or title.startswith("biref error"):
                     break
                 time.sleep(0.1)
+            if a.errors:
+                check_error_page(cdp, sess, url, title, out)
+                continue
             if title != "biref ready":
                 raise RuntimeError(f"{url}: the page did not get ready in {a.timeout:.0f} s (title: {title!r})")
             shot = cdp.call("Page.captureScreenshot", {"format": "png", "clip": {

@@ -132,6 +132,19 @@ refused "accuracy --plot-dir picture = --materials" "$over" "$d/fig/accuracy_vs_
 refused "accuracy --plot-dir picture = --csv" "$same" -- "${acc[@]}" --plot-dir "$d/fig" \
   --csv "$d/fig/accuracy_vs_theta.png"
 
+# An output named with another format's extension is refused (render -o x.pfm wrote a PNG).
+ext='writes .*, but the name ends in'
+refused "render -o x.pfm" "$ext" -- "${r[@]}" -o "$d/x.pfm"
+refused "render --pfm x.png" "$ext" -- "${r[@]}" -o "$d/n.png" --pfm "$d/y.png"
+refused "render --chroma-map x.csv" "$ext" -- "${r[@]}" -o "$d/n.png" --chroma-map "$d/y.CSV"
+refused "photoelastic -o x.pfm" "$ext" -- photoelastic --preset disk -o "$d/x.pfm"
+refused "photoelastic --format pfm -o x.png" "$ext" -- photoelastic --preset disk --format pfm -o "$d/x.png"
+refused "gl-data -o x.json" "$ext" -- gl-data -o "$d/x.json" "$d/s.json"
+refused "diff -o x.pfm" "$ext" -- diff "$d/a.png" "$d/b.png" -o "$d/x.pfm"
+refused "accuracy --csv x.md" "$ext" -- "${acc[@]}" --csv "$d/x.md"
+for f in x.pfm y.png y.CSV x.json x.md; do [ -e "$d/$f" ] && fail "$f written"; done
+expect_ok "render -o without an extension" render "$d/s.json" --quiet -o "$d/plain"
+
 # A character device is not a file: several outputs may go to /dev/null.
 expect_ok "render -o and --pfm to /dev/null" render "$d/s.json" --quiet -o /dev/null --pfm /dev/null
 

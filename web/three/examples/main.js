@@ -1,4 +1,5 @@
-// BirefringentMaterial examples. ?example=NAME (fig9c, polariscope, gem, sheet) &width=W
+// BirefringentMaterial examples. ?example=NAME (fig9c, polariscope, gem, sheet; all: the three
+// mesh scenes in turn on one renderer) &width=W
 // &height=H &view=canvas (only the canvas, for tests) &frames=N (time N more frames after the
 // first) &material=iridescence (three.js's own MeshPhysicalMaterial with iridescence in place of
 // every birefringent one, to compare costs). fig9c also takes thickness_um and eta_o for its slab.
@@ -172,7 +173,8 @@ function polariscope() {
   // The polarizer sheet: an isotropic film (η_o = η_e) seen through the analyzer, dark where the
   // polarizers are crossed.
   const sheet = new THREE.Mesh(new THREE.PlaneGeometry(2.0, 1.3), slabMaterial({
-    ordinaryIOR: 1.5, extraordinaryIOR: 1.5, slabThickness: 2e5, opticAxis: new THREE.Vector3(0, 0, 1), ...crossed }));
+    ordinaryIOR: 1.5, extraordinaryIOR: 1.5, slabThickness: 2e5, opticAxis: new THREE.Vector3(0, 0, 1), ...crossed,
+    side: THREE.DoubleSide }));
   sheet.position.z = -0.3;
   scene.add(sheet);
 
@@ -227,24 +229,25 @@ function gem() {
   light.position.set(1, 2, 1.5);
   scene.add(light);
   const camera = new THREE.PerspectiveCamera(35, W / H, 0.01, 50);
-  camera.position.set(1.2, 1.0, 1.6);
+  camera.position.set(0.9, 1.7, 1.3);
   camera.lookAt(0, 0, 0);
   // A brilliant-like cut: pavilion, girdle, crown and table, eight facets around.
   const profile = [[0.001, -0.55], [0.6, 0], [0.6, 0.05], [0.38, 0.25], [0.001, 0.25]].map(([x, y]) => new THREE.Vector2(x, y));
   const geometry = new THREE.LatheGeometry(profile, 8).toNonIndexed();
   geometry.computeVertexNormals();
   // A quartz-like crystal seen between crossed polarizers (light polarized vertically, analyzer
-  // horizontal): each facet a 30 µm slab, the optic axis fixed in the crystal.
+  // horizontal): each facet a 60 µm slab, the optic axis fixed in the crystal.
   const material = slabMaterial({
-    ordinaryIOR: 1.544, extraordinaryIOR: 1.553, slabThickness: 3e4, side: THREE.DoubleSide, flatShading: true,
-    opticAxisSpace: 'object', opticAxis: new THREE.Vector3(0.3, 1, 0.2),
+    ordinaryIOR: 1.544, extraordinaryIOR: 1.553, slabThickness: 6e4, side: THREE.DoubleSide,
+    opticAxisSpace: 'object', opticAxis: new THREE.Vector3(1, 0.3, 0.5),
     polarization: 'linear', polarizerDirection: new THREE.Vector3(0, 1, 0),
     analyzer: 'linear', analyzerDirection: new THREE.Vector3(1, 0, -0.6),
   });
   const mesh = new THREE.Mesh(geometry, material);
   mesh.rotation.y = 0.3;
   scene.add(mesh);
-  const floor = new THREE.Mesh(new THREE.PlaneGeometry(6, 6), new THREE.MeshStandardMaterial({ color: 0xd8d8d8, roughness: 0.8 }));
+  // On a gemmologist's light table: the light the facets transmit comes from below.
+  const floor = new THREE.Mesh(new THREE.CircleGeometry(1.6, 64), new THREE.MeshBasicMaterial({ color: 0xf2f2f2 }));
   floor.rotation.x = -Math.PI / 2;
   floor.position.y = -0.6;
   scene.add(floor);
@@ -261,7 +264,7 @@ function sheet() {
   const box = new THREE.Mesh(new THREE.PlaneGeometry(2.6, 1.6), new THREE.MeshBasicMaterial({ color: 0xffffff }));
   box.position.z = -0.7;
   scene.add(box);
-  // A stretched film (Δn 0.009, 45 µm) bent into a half cylinder: the retardation changes with
+  // A stretched film (Δn 0.009, 110 µm) bent into a half cylinder: the retardation changes with
   // the angle of incidence along the bend. Optic axis along the stretch (the tangent).
   const R = 0.45, geometry = new THREE.PlaneGeometry(Math.PI * R, 0.9, 96, 1);
   const pos = geometry.attributes.position;
@@ -271,40 +274,50 @@ function sheet() {
   }
   geometry.computeVertexNormals();
   const material = slabMaterial({
-    ordinaryIOR: 1.55, extraordinaryIOR: 1.559, slabThickness: 4.5e4, side: THREE.DoubleSide,
+    ordinaryIOR: 1.55, extraordinaryIOR: 1.559, slabThickness: 1.1e5, side: THREE.DoubleSide,
     opticAxis: new THREE.Vector3(1, 0, 0),
     polarization: 'linear', polarizerDirection: new THREE.Vector3(Math.SQRT1_2, Math.SQRT1_2, 0),
     analyzer: 'linear', analyzerDirection: new THREE.Vector3(-Math.SQRT1_2, Math.SQRT1_2, 0),
   });
-  scene.add(new THREE.Mesh(geometry, material));
+  const mesh = new THREE.Mesh(geometry, material);
+  mesh.rotation.set(0.35, 0.5, 0.15);
+  scene.add(mesh);
   return { scene, camera, target: new THREE.Vector3(0, 0, 0) };
 }
 
 const EXAMPLES = { fig9c, polariscope, gem, sheet };
 const name = params.get('example') || 'fig9c';
-if (!(name in EXAMPLES)) fail(`unknown example '${name}' (examples: ${Object.keys(EXAMPLES).join(', ')})`);
-const { scene, camera, target } = EXAMPLES[name]();
-const controls = new OrbitControls(camera, renderer.domElement);
-controls.target.copy(target); // the camera already looks there: no update before the first frame
-controls.addEventListener('change', () => render());
+// 'all': every mesh example drawn in turn by one renderer (its programs compiled once), for tests.
+const ALL = ['polariscope', 'gem', 'sheet'];
+if (!(name in EXAMPLES) && name !== 'all')
+  fail(`unknown example '${name}' (examples: ${Object.keys(EXAMPLES).join(', ')}, all)`);
 
 const gl = renderer.getContext();
 const pixel = new Uint8Array(4);
+let current = null;
 function render() {
-  renderer.render(scene, camera);
+  renderer.render(current.scene, current.camera);
   // A one-pixel read waits for the frame: the time measured is the time to a finished picture.
   gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
   const err = gl.getError();
-  if (err !== gl.NO_ERROR) fail(`WebGL error 0x${err.toString(16)} while drawing '${name}'`);
+  if (err !== gl.NO_ERROR) fail(`WebGL error 0x${err.toString(16)} while drawing '${current.name}'`);
 }
 
-let t0 = performance.now();
-render();
-const firstMs = performance.now() - t0;
+let firstMs = 0;
+for (const n of name === 'all' ? ALL : [name]) {
+  current = { name: n, ...EXAMPLES[n]() };
+  const t0 = performance.now();
+  render();
+  firstMs += performance.now() - t0;
+}
+const controls = new OrbitControls(current.camera, renderer.domElement);
+controls.target.copy(current.target); // the camera already looks there: no update before the first frame
+controls.addEventListener('change', () => render());
+
 const frames = parseInt(params.get('frames') || '0', 10);
 const times = [];
 for (let k = 0; k < frames; k++) {
-  t0 = performance.now();
+  const t0 = performance.now();
   render();
   times.push(performance.now() - t0);
 }
@@ -313,5 +326,6 @@ const median = times.length ? times[times.length >> 1] : NaN;
 document.body.dataset.firstFrameMs = firstMs.toFixed(1);
 document.body.dataset.frameMs = median.toFixed(1);
 $('info').textContent = `${name}, ${W}×${H}${useIridescence ? ', MeshPhysicalMaterial iridescence' : ''}: first frame ` +
-  `${firstMs.toFixed(0)} ms (shader compile included)` + (times.length ? `, median of ${times.length}: ${median.toFixed(1)} ms` : '');
+  `${firstMs.toFixed(0)} ms (shader compile included)` + (times.length ? `, median of ${times.length}: ${median.toFixed(1)} ms` : '') +
+  '. Drag to orbit, wheel to zoom.';
 requestAnimationFrame(() => { if (!document.title.startsWith('biref error')) document.title = 'biref ready'; });

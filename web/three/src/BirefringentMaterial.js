@@ -48,7 +48,7 @@ const VERTEX_MAIN = 'vBirefUv = uv;\n';
 const FRAGMENT_PARS = `
 uniform vec4 biref_slab;            // eta_o, eta_e, thickness (nm), surrounding index
 uniform vec3 biref_axis;            // optic axis in the tangent frame (tangent, bitangent, normal)
-uniform vec4 biref_light;           // polarization (0 unpolarized, 1 s/p, 2 linear), s fraction, analyzer (0 none, 1 s, 2 p, 3 linear), unused
+uniform vec4 biref_light;           // polarization (0 unpolarized, 1 s/p, 2 linear), s fraction, analyzer (0 none, 1 s, 2 p, 3 linear), axis in object space
 uniform vec3 biref_polarizer_dir;   // world space
 uniform vec3 biref_analyzer_dir;    // world space
 uniform mat3 biref_rgb_from_xyz;    // the library's XYZ (white E) -> linear sRGB
@@ -96,11 +96,10 @@ const FRAGMENT_MAIN = `
 #ifdef BIREF_AXISMAP
     bAxisLocal = texture2D(biref_axis_map, vBirefUv).xyz * 2.0 - 1.0;
 #endif
-#ifdef BIREF_AXIS_OBJECT
-    vec3 bAxis = normalize((viewMatrix * modelMatrix * vec4(bAxisLocal, 0.0)).xyz);
-#else
-    vec3 bAxis = normalize(bAxisLocal.x * bT + bAxisLocal.y * bB + bAxisLocal.z * bNGeo);
-#endif
+    /* biref_light.w: 1 when the axis is in object space (a runtime switch: one program less). */
+    vec3 bAxis = biref_light.w > 0.5 ? (viewMatrix * modelMatrix * vec4(bAxisLocal, 0.0)).xyz
+                                     : bAxisLocal.x * bT + bAxisLocal.y * bB + bAxisLocal.z * bNGeo;
+    bAxis = normalize(bAxis);
     float bThick = biref_slab.z;
 #ifdef BIREF_THICKNESSMAP
     bThick *= texture2D(biref_thickness_map, vBirefUv).g;
@@ -152,7 +151,6 @@ export class BirefringentMaterial extends MeshPhysicalMaterial {
     // The slab decides colour and energy; three.js's physical model supplies only the light:
     // a white metal (Fresnel one) gives the lights' bare specular lobes, transmission one the
     // light behind (thin wall: no volume, no offset).
-    this._opticAxisSpace = 'tangent';
     this.color.set(0xffffff);
     this.metalness = 1;
     this.roughness = 0;
@@ -194,11 +192,10 @@ export class BirefringentMaterial extends MeshPhysicalMaterial {
 
   /** 'tangent' (default): opticAxis and opticAxisMap are in the tangent frame; 'object': in
    * the mesh's object space (a crystal whose axis does not follow the surface). */
-  get opticAxisSpace() { return this._opticAxisSpace; }
+  get opticAxisSpace() { return this.birefUniforms.biref_light.value.w > 0.5 ? 'object' : 'tangent'; }
   set opticAxisSpace(v) {
     if (v !== 'tangent' && v !== 'object') throw new RangeError(`opticAxisSpace: '${v}' is not 'tangent' or 'object'`);
-    if (v !== this._opticAxisSpace) this.needsUpdate = true;
-    this._opticAxisSpace = v;
+    this.birefUniforms.biref_light.value.w = v === 'object' ? 1 : 0;
   }
 
   /** Texture of optic axes in the tangent frame, xyz = 2 rgb − 1 (like a normal map; load it
@@ -240,15 +237,14 @@ export class BirefringentMaterial extends MeshPhysicalMaterial {
     shader.vertexShader = insertAfter(shader.vertexShader, '#include <common>', VERTEX_PARS);
     shader.vertexShader = insertAfter(shader.vertexShader, '#include <uv_vertex>', VERTEX_MAIN);
     const defines = (this.slabThicknessMap ? '#define BIREF_THICKNESSMAP\n' : '') +
-      (this.opticAxisMap ? '#define BIREF_AXISMAP\n' : '') +
-      (this.opticAxisSpace === 'object' ? '#define BIREF_AXIS_OBJECT\n' : '');
+      (this.opticAxisMap ? '#define BIREF_AXISMAP\n' : '');
     shader.fragmentShader = insertAfter(shader.fragmentShader, '#include <clipping_planes_pars_fragment>',
       defines + FRAGMENT_PARS);
     shader.fragmentShader = insertBefore(shader.fragmentShader, '#include <opaque_fragment>', FRAGMENT_MAIN);
   }
 
   customProgramCacheKey() {
-    return `biref:${this.slabThicknessMap ? 1 : 0}${this.opticAxisMap ? 1 : 0}${this.opticAxisSpace === 'object' ? 1 : 0}`;
+    return `biref:${this.slabThicknessMap ? 1 : 0}${this.opticAxisMap ? 1 : 0}`;
   }
 
   copy(source) {

@@ -17,6 +17,15 @@
 typedef biref_status (*side_worker)(const biref_integrator *it, const biref_slab_state *st, const biref_opl_footprint *fp,
                                     int which, const biref_light *l, double xyz[3], int *order_used);
 
+/* Where the next media plug in. Today the medium at a hit is one slab of constant indices (a
+ * prepared biref_slab_state) and the worker is picked per method at creation (side, hits). A
+ * dispersive material (wavelength-dependent indices: numeric_dispersive.c prepares the slab per
+ * sample wavelength, biref_integrate_material) and a stack of layers are further kinds of medium:
+ * each gets its workers per method here, picked at creation by (method, medium kind) next to the
+ * ones below, so that the per-sample call never switches on the medium and the renderer, shader
+ * and photoelastic callers keep one door (biref_integrate_hit / biref_integrate_packet_hits taking
+ * "the medium at a hit"); a method without a worker for a kind says so once, at creation (today
+ * biref_integrate_material refuses the closed-form methods on every call). */
 struct biref_integrator {
     const biref_spectral *sp;
     biref_method method;

@@ -122,7 +122,8 @@ static void random_layer(test_rng *r, biref_layer *l)
 static void random_stack(test_rng *r, biref_stack *s, double *theta, double *lambda)
 {
     memset(s, 0, sizeof *s);
-    s->eta_i = test_uniform(r, 0, 1) < 0.5 ? 1.0 : 1.33;
+    double u = test_uniform(r, 0, 1);
+    s->eta_i = u < 0.4 ? 1.0 : u < 0.8 ? 1.33 : 1.8; /* 1.8: evanescent layers at oblique incidence */
     s->n_layers = 1 + (int)test_uniform(r, 0, 6);
     for (int i = 0; i < s->n_layers; i++) random_layer(r, &s->layers[i]);
     *theta = test_uniform(r, 0, 85) * M_PI / 180;
@@ -223,6 +224,11 @@ static void stack_equals_transfer_matrix_product(void)
         biref_stack s;
         double theta, lambda;
         random_stack(&r, &s, &theta, &lambda);
+        if (k % 3 == 0) { /* thin layers under a dense surround: evanescent modes that still couple */
+            s.eta_i = 1.8;
+            theta = test_uniform(&r, 50, 85) * M_PI / 180;
+            for (int i = 0; i < s.n_layers; i++) s.layers[i].thickness_nm = test_uniform(&r, 10, 300);
+        }
         biref_jones T1, R1, T2, R2;
         if (biref_stack_jones_tmm(&s, theta, lambda, &T2, &R2) != BIREF_OK) continue;
         biref_stack_state st;
@@ -234,7 +240,7 @@ static void stack_equals_transfer_matrix_product(void)
     }
     printf("  worst amplitude difference vs 4x4 product %.2e (%d stacks, %d with evanescent layers)\n", worst,
            compared, evanescent);
-    CHECK(compared > n / 2 && evanescent > 10);
+    CHECK(compared > n / 2 && evanescent > n / 6);
     CHECK(worst < 1e-9);
 }
 

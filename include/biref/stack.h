@@ -1,7 +1,7 @@
 /* biref — stacks of homogeneous layers (isotropic or uniaxial, each with its own optic axis)
  * between the same isotropic medium above and below: wave-plate filters, cellophane art, films on
  * glass, plates whose stress varies through the thickness. Exact Jones matrices per wavelength
- * (docs/STACKS.md), a 4x4 transfer-matrix reference, stack files, and the band integrals.
+ * (docs/STACKS.md), a 4x4 transfer-matrix reference and stack files.
  *
  * Frame and bases as for a slab (docs/CONVENTIONS.md): the light enters the first layer at
  * y = 0, the layers follow downwards, transmitted amplitudes refer to the bottom face of the last
@@ -86,44 +86,6 @@ BIREF_API biref_status biref_stack_jones(const biref_stack *stack, double theta_
  * limit applies to the whole stack). */
 BIREF_API biref_status biref_stack_jones_tmm(const biref_stack *stack, double theta_rad, double lambda_nm,
                                              biref_jones *T, biref_jones *R);
-
-/* ------------------------------------------------------------------------- */
-/* Band integrals                                                             */
-/* ------------------------------------------------------------------------- */
-
-/* Numeric integration of |J|^2 with a plan's samples (exact per sample): the four s/p pairs and,
- * when light is not NULL, its detected XYZ (mixed_T, mixed_R, may be NULL). No allocation. */
-BIREF_API void biref_stack_spectrum_numeric(const biref_numeric_plan *plan, const biref_stack_state *st,
-                                            const biref_light *light, biref_spectrum *out, double mixed_T[3],
-                                            double mixed_R[3]);
-
-typedef struct {
-    double tolerance; /* bound on the truncation error of every intensity (default 1e-3) */
-    int max_groups;   /* more path groups than this leaving one face: fall back (default 4096) */
-} biref_stack_expansion_opts;
-
-BIREF_API void biref_stack_expansion_opts_default(biref_stack_expansion_opts *o);
-
-typedef struct {
-    int fallback;          /* 1: integrated numerically instead (reason says why) */
-    const char *reason;    /* static text, "" when the expansion was used */
-    int samples;           /* fallback: samples of the adaptive numeric integration */
-    int groups[2];         /* path groups leaving through the bottom [0] and the top [1] */
-    int legs;              /* longest path kept, in legs */
-    double bound;          /* the truncation bound reached (intensity, per input) */
-} biref_stack_expansion_info;
-
-/* The stack's response as a sum over paths (o/e legs per layer, internal reflections),
- * paths of equal optical path merged into groups, every pair of groups integrated exactly with
- * the S(cos), S(sin) table; paths are followed until the power still inside the stack, P, gives
- * the bound 2 sqrt(P) + P <= tolerance. Falls back to adaptive numeric integration (doubling the
- * samples until two runs agree to tolerance / 10) when a layer has an evanescent mode, when the
- * groups exceed max_groups or when the bound is not met. Allocates (BIREF_ERR_NOMEM);
- * BIREF_ERR_INVALID for options outside their domain. info may be NULL. */
-BIREF_API biref_status biref_stack_spectrum_expansion(const biref_spectral *sp, const biref_stack_state *st,
-                                                      const biref_stack_expansion_opts *opts, const biref_light *light,
-                                                      biref_spectrum *out, double mixed_T[3], double mixed_R[3],
-                                                      biref_stack_expansion_info *info);
 
 #ifdef __cplusplus
 }

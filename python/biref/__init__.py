@@ -16,7 +16,7 @@ import numpy as _np
 
 from ._native import ffi as _ffi, lib as _lib, library_path
 
-__all__ = ["slab", "spectrum", "render", "photoelastic", "BirefError", "library_path", "__version__"]
+__all__ = ["slab", "stack", "spectrum", "render", "photoelastic", "BirefError", "library_path", "__version__"]
 __version__ = "0.1.0"
 
 _SP = ("s", "p")
@@ -204,6 +204,83 @@ def _slab_one(sl, theta_deg, lambda_nm, method):
         "total_reflection": {"o": bool(st.modes.evanescent_o), "e": bool(st.modes.evanescent_e),
                              "any": bool(st.total_reflection)},
         "modes": _modes(st),
+    }
+
+
+# --------------------------------------------------------------------------------------------
+# Stacks of layers
+# --------------------------------------------------------------------------------------------
+
+def _load_stack(stack):
+    """A checked biref_stack from a stack file's path or a dict in the file's form."""
+    st = _ffi.new("biref_stack *")
+    if isinstance(stack, dict):
+        text = _json.dumps(stack).encode()
+        _call("stack", _lib.biref_stack_parse, text, len(text), st)
+    elif isinstance(stack, (str, bytes, _os.PathLike)):
+        _call(_os.fsdecode(stack), _lib.biref_stack_load, _os.fsencode(stack), st)
+    else:
+        raise TypeError("stack: expected a stack file's path or a dict {'eta_i': ..., 'layers': [...]}")
+    return st
+
+
+def _stack_layers(st):
+    out = []
+    for i in range(st.n_layers):
+        l = st.layers[i]
+        d = {"eta": l.eta_o} if l.isotropic else {"eta_o": l.eta_o, "eta_e": l.eta_e, "axis": list(l.axis)}
+        d["thickness_nm"] = l.thickness_nm
+        out.append(d)
+    return out
+
+
+def stack(stack, theta_deg=0.0, lambda_nm=550.0, method="exact"):
+    """Transmission and reflection of a plane wave by a stack of layers: the fields of
+    ``biref stack FILE --json``. stack: a stack file's path, or a dict in the file's form
+    ({"eta_i": 1.0, "layers": [{"eta_o": ..., "eta_e": ..., "azimuth_deg": ..., "thickness_um": ...}]},
+    docs/STACKS.md). lambda_nm may be a numpy array: the leaves of T, R and energy are then arrays
+    of its shape and jones_T/jones_R complex arrays. method: "exact" or "tmm" (4x4 product).
+    """
+    if method not in ("exact", "tmm"):
+        raise ValueError(f"method: expected exact or tmm, got {method!r}")
+    sk = _load_stack(stack)
+    theta = _theta_rad(theta_deg)
+    lam = _np.asarray(lambda_nm, dtype=float)
+    if not _np.all(lam > 0):
+        raise ValueError("lambda_nm: must be positive")
+    st = _ffi.new("biref_stack_state *")
+    _check(_lib.biref_stack_prepare(sk, theta, st), "stack")
+    T = _ffi.new("biref_jones *")
+    R = _ffi.new("biref_jones *")
+    JT = _np.empty(lam.shape + (2, 2), dtype=complex)
+    JR = _np.empty_like(JT)
+    for idx in _np.ndindex(lam.shape):
+        if method == "tmm":
+            _check(_lib.biref_stack_jones_tmm(sk, theta, float(lam[idx]), T, R), "tmm")
+        else:
+            _lib.biref_stack_jones_at(st, float(lam[idx]), T, R)
+        JT[idx] = [[T.m[i][o] for o in range(2)] for i in range(2)]
+        JR[idx] = [[R.m[i][o] for o in range(2)] for i in range(2)]
+    if not (_np.all(_np.isfinite(JT)) and _np.all(_np.isfinite(JR))):
+        raise BirefError("numerical failure (non-finite result)")
+    PT, PR = _np.abs(JT) ** 2, _np.abs(JR) ** 2
+    scalar = lam.ndim == 0
+    if scalar:
+        jones = lambda J: _sp_matrix([[[J[i, o].real, J[i, o].imag] for o in range(2)] for i in range(2)])  # noqa: E731
+        power = lambda P: _sp_matrix(P.tolist())  # noqa: E731
+    else:
+        jones = power = lambda M: _sp_matrix(_np.moveaxis(M, (-2, -1), (0, 1)))  # noqa: E731
+    return {
+        "method": method,
+        "input": {"eta_i": sk.eta_i, "theta_deg": float(theta_deg), "lambda_nm": float(lam) if scalar else lam,
+                  "layers": _stack_layers(sk)},
+        "T": power(PT),
+        "R": power(PR),
+        "jones_T": jones(JT),
+        "jones_R": jones(JR),
+        "energy": {_SP[i]: PT[..., i, :].sum(-1) + PR[..., i, :].sum(-1) for i in range(2)},
+        "K": st.K,
+        "total_reflection": {"any": bool(st.evanescent), "layers": st.evanescent},
     }
 
 

@@ -10,7 +10,7 @@
 #include "biref/stack.h"
 #include "error.h"
 #include "io/json_strict.h"
-#include "photoelastic/textfile.h"
+#include "io/textfile.h"
 
 /* Files beyond this are not stacks (64 layers take a few KB). */
 #define STACK_FILE_MAX_BYTES (1u << 20)
@@ -179,7 +179,7 @@ biref_status biref_stack_load(const char *path, biref_stack *out, char *msg, siz
 {
     char *text = NULL;
     size_t len = 0;
-    biref_status s = biref_pe_read_text(path, STACK_FILE_MAX_BYTES, &text, &len, msg, msg_len);
+    biref_status s = biref_read_text(path, STACK_FILE_MAX_BYTES, &text, &len, msg, msg_len);
     if (s != BIREF_OK) return s;
     s = biref_stack_parse(text, len, out, msg, msg_len);
     free(text);

@@ -1,7 +1,7 @@
 /* biref — stacks of homogeneous layers (isotropic or uniaxial, each with its own optic axis)
  * between the same isotropic medium above and below: wave-plate filters, cellophane art, films on
  * glass, plates whose stress varies through the thickness. Exact Jones matrices per wavelength
- * (docs/STACKS.md), a 4x4 transfer-matrix reference and stack files.
+ * (docs/STACKS.md), a 4x4 transfer-matrix reference, stack files and the band integrals.
  *
  * Frame and bases as for a slab (docs/CONVENTIONS.md): the light enters the first layer at
  * y = 0, the layers follow downwards, transmitted amplitudes refer to the bottom face of the last
@@ -86,6 +86,46 @@ BIREF_API biref_status biref_stack_jones(const biref_stack *stack, double theta_
  * limit applies to the whole stack). */
 BIREF_API biref_status biref_stack_jones_tmm(const biref_stack *stack, double theta_rad, double lambda_nm,
                                              biref_jones *T, biref_jones *R);
+
+/* ------------------------------------------------------------------------- */
+/* Band integrals (docs/STACKS.md §2)                                         */
+/* ------------------------------------------------------------------------- */
+
+typedef struct {
+    biref_method method; /* BIREF_METHOD_EXPANSION (default), _NUMERIC or _GROUND_TRUTH */
+    int samples;         /* numeric: wavelength samples (default 64) */
+    double tolerance;    /* expansion: bound on the truncation error of every intensity (1e-3) */
+    int max_groups;      /* expansion: more path groups than this leaving one face: fall back (1024;
+                          * the pairs, ~n^2/2 table look-ups, then cost more than the fallback) */
+} biref_stack_spectrum_opts;
+
+BIREF_API void biref_stack_spectrum_opts_default(biref_stack_spectrum_opts *o);
+
+/* What the integration did. */
+typedef struct {
+    int fallback;       /* expansion: 1 when integrated numerically instead; reason says why */
+    const char *reason; /* static text, "" when the expansion was used */
+    int samples;        /* numeric, ground truth or the fallback: wavelength samples used */
+    int groups[2];      /* expansion: path groups leaving through the bottom [0] and the top [1] */
+    int legs;           /* expansion: legs followed (the longest path kept) */
+    double bound;       /* expansion: the truncation bound reached (fallback: tolerance when two
+                         * runs agreed to it, NaN when the largest run was reached first) */
+} biref_stack_spectrum_info;
+
+/* Band-normalised XYZ of the four s/p pairs (out) and, when light is not NULL, its detected XYZ
+ * (mixed_T, mixed_R; either may be NULL), transmission and reflection of a prepared stack.
+ * numeric / ground truth: midpoint samples of the exact Jones matrices. expansion: the stack's
+ * response as a sum over path groups (o/e legs per layer, internal reflections, equal optical
+ * paths merged), every pair of groups integrated exactly with the S(cos), S(sin) table, paths
+ * followed until those still inside bound the error of every intensity by tolerance; where a layer
+ * is evanescent, the groups exceed max_groups or the bound is not met, adaptive numeric
+ * integration instead (samples doubled from 256 until two runs agree to tolerance), reported in
+ * info (may be NULL). Allocates: BIREF_ERR_NOMEM; BIREF_ERR_INVALID for options outside their
+ * domain (the analytic method included); BIREF_ERR_ILLCOND for a non-finite result. */
+BIREF_API biref_status biref_stack_spectrum(const biref_spectral *sp, const biref_stack_state *st,
+                                            const biref_stack_spectrum_opts *opts, const biref_light *light,
+                                            biref_spectrum *out, double mixed_T[3], double mixed_R[3],
+                                            biref_stack_spectrum_info *info, char *msg, size_t msg_len);
 
 #ifdef __cplusplus
 }

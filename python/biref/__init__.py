@@ -17,7 +17,7 @@ import numpy as _np
 
 from ._native import ffi as _ffi, lib as _lib, library_path
 
-__all__ = ["slab", "stack", "spectrum", "material", "materials", "render", "photoelastic", "BirefError",
+__all__ = ["slab", "stack", "stack_spectrum", "spectrum", "material", "materials", "render", "photoelastic", "BirefError",
            "library_path", "__version__"]
 __version__ = "0.1.0"
 
@@ -594,6 +594,64 @@ def spectrum(eta_o=None, eta_e=None, axis=None, thickness_mm=None, thickness_um=
         # The pair order the adaptive (or fixed) expansion used for the mixed colours.
         result["expansion_order"] = {"T": leaf(orders[..., 0]), "R": leaf(orders[..., 1])}
     return result
+
+
+def stack_spectrum(stack, theta_deg=0.0, method="expansion", samples=None, tolerance=None,
+                   polarization="unpolarized", polarizer=None, stokes=None, analyzer="none"):
+    """Colours of a stack of layers: the fields of ``biref spectrum --stack FILE --json``. stack: a
+    stack file's path or a dict in the file's form; method: expansion (default; falls back to
+    adaptive numeric integration, reported under "expansion"), numeric or ground-truth. The light
+    options are those of ``spectrum``.
+    """
+    sk = _load_stack(stack)
+    theta = _theta_rad(theta_deg)
+    m = _method(method)
+    opts = _ffi.new("biref_stack_spectrum_opts *")
+    _lib.biref_stack_spectrum_opts_default(opts)
+    opts.method = m
+    if samples is not None:
+        if m != _lib.BIREF_METHOD_NUMERIC:
+            raise ValueError("samples: only valid with method numeric")
+        opts.samples = int(samples)
+    if tolerance is not None:
+        if m != _lib.BIREF_METHOD_EXPANSION:
+            raise ValueError("tolerance: only valid with method expansion")
+        opts.tolerance = float(tolerance)
+    w_in, mask, S, P, pol_name, an_name = _light(polarization, polarizer, stokes, analyzer)
+    light = _ffi.new("biref_light *")
+    if S is None and P is None:
+        _check(_lib.biref_light_sp(w_in, mask, light), "light")
+    else:
+        _check(_lib.biref_light_stokes(S if S is not None else [1.0, w_in[0] - w_in[1], 0.0, 0.0], light),
+               "stokes: not a physical Stokes vector")
+        if P is None:
+            P = _ffi.new("biref_complex[2][2]")
+            P[0][0], P[1][1] = mask
+        _lib.biref_light_set_analyzer(light, P)
+    st = _ffi.new("biref_stack_state *")
+    _check(_lib.biref_stack_prepare(sk, theta, st), "stack")
+    spp = _ffi.new("biref_spectral **")
+    _call("spectral context", _lib.biref_spectral_create, _ffi.NULL, spp)
+    sp = _ffi.gc(spp[0], _lib.biref_spectral_destroy)
+    spec = _ffi.new("biref_spectrum *")
+    mt, mr = _ffi.new("double[3]"), _ffi.new("double[3]")
+    info = _ffi.new("biref_stack_spectrum_info *")
+    _call("stack spectrum", _lib.biref_stack_spectrum, sp, st, opts, light, spec, mt, mr, info)
+    pairs = lambda X: {_SP[i]: {_SP[o]: list(X[i][o]) for o in range(2)} for i in range(2)}  # noqa: E731
+    out = {
+        "method": _ffi.string(_lib.biref_method_name(m)).decode(),
+        "samples": info.samples or None,
+        "input": {"eta_i": sk.eta_i, "theta_deg": float(theta_deg), "layers": _stack_layers(sk)},
+        "total_reflection": bool(st.evanescent),
+        "T": pairs(spec.T),
+        "R": pairs(spec.R),
+        "mixed": {"polarization": pol_name, "analyzer": an_name, "T_xyz": list(mt), "R_xyz": list(mr)},
+    }
+    if m == _lib.BIREF_METHOD_EXPANSION:
+        out["expansion"] = {"fallback": bool(info.fallback), "reason": _ffi.string(info.reason).decode(),
+                            "bound": info.bound if _math.isfinite(info.bound) else None, "legs": info.legs,
+                            "groups": {"T": info.groups[0], "R": info.groups[1]}}
+    return out
 
 
 # --------------------------------------------------------------------------------------------

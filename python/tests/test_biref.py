@@ -89,6 +89,19 @@ def test_stack_of_one_layer_is_the_slab_and_arrays_broadcast():
         biref.stack(one, method="magic")
 
 
+@needs_cli
+def test_stack_spectrum_matches_cli():
+    path = os.path.join(ROOT, "examples", "stacks", "film_on_glass.json")
+    ref = cli_json("spectrum", "--stack", path, "--theta-deg", "30", "--polarization", "s", "--analyzer", "p")
+    got = biref.stack_spectrum(path, theta_deg=30, polarization="s", analyzer="p")
+    for key in ("T", "R"):
+        assert_same(got[key], ref[key], 1e-12)
+    np.testing.assert_allclose(got["mixed"]["T_xyz"], ref["mixed"]["T_xyz"], atol=1e-12)
+    assert got["expansion"]["groups"] == ref["expansion"]["groups"]
+    with pytest.raises(ValueError, match="no analytic method"):
+        biref.stack_spectrum(path, method="analytic")
+
+
 def test_slab_vectorised_equals_scalar_and_conserves_energy():
     theta = np.array([0.0, 20.0, 45.0, 70.0])
     lam = np.linspace(400, 700, 7)[:, None]

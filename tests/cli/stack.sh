@@ -61,4 +61,34 @@ expect_error "theta 90" stack "$ex/cellophane3.json" --theta-deg 90
 expect_error "lambda zero" stack "$ex/cellophane3.json" --lambda-nm 0
 expect_error "lambda nan" stack "$ex/cellophane3.json" --lambda-nm nan
 expect_error "unknown method" stack "$ex/cellophane3.json" --method magic
+
+# biref spectrum --stack: the expansion by default, numeric and ground truth on request; a one-layer
+# stack's numeric colours are the slab's; conflicting options are refused.
+expect_ok "spectrum --stack" spectrum --stack "$ex/cellophane3.json" --polarization s --analyzer p --json
+expect_grep "stack spectrum method" '"method":[[:space:]]*"expansion"'
+expect_grep "stack spectrum groups" '"groups":'
+expect_ok "spectrum --stack fallback reported" spectrum --stack "$ex/cellophane3.json" --theta-deg 60 --json
+expect_grep "fallback reason" '"reason":[[:space:]]*"too many path groups"'
+expect_ok "spectrum --stack ground truth" spectrum --stack "$ex/lyot_stage1.json" --method ground-truth
+expect_grep "ground truth samples" "16384 samples"
+"$BIREF" spectrum --stack "$tmpdir/one.json" --theta-deg 30 --method numeric --spectral-samples 256 --json \
+  >"$tmpdir/sstack.json"
+"$BIREF" spectrum --eta-o 1.5 --eta-e 1.6 --axis 0.3,0.5,0.8 --thickness-um 10 --eta-i 1.2 --theta-deg 30 \
+  --method numeric --spectral-samples 256 --json >"$tmpdir/sslab.json"
+python3 - "$tmpdir/sstack.json" "$tmpdir/sslab.json" <<'PY' || fails=$((fails + 1))
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+worst = max(abs(u - v) for d in ("T", "R") for i in "sp" for o in "sp" for u, v in zip(a[d][i][o], b[d][i][o]))
+worst = max(worst, max(abs(u - v) for u, v in zip(a["mixed"]["T_xyz"], b["mixed"]["T_xyz"])))
+if worst > 1e-12:
+    print(f"FAIL (one-layer stack spectrum vs slab): worst difference {worst:.3g}")
+    sys.exit(1)
+PY
+expect_error "stack with slab options" spectrum --stack "$ex/cellophane3.json" --eta-o 1.5
+expect_error "stack with eta-i" spectrum --stack "$ex/cellophane3.json" --eta-i 1.3
+expect_error "stack with analytic" spectrum --stack "$ex/cellophane3.json" --method analytic
+expect_error "stack with order" spectrum --stack "$ex/cellophane3.json" --order 2
+expect_error "stack tolerance out of range" spectrum --stack "$ex/cellophane3.json" --tolerance 0.5
+expect_error "stack samples without numeric" spectrum --stack "$ex/cellophane3.json" --spectral-samples 64
+expect_error "stack file missing" spectrum --stack "$tmpdir/none.json"
 finish

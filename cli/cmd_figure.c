@@ -19,6 +19,7 @@
 #include "de_scale.h"
 #include "fig_aliasing.h"
 #include "fig_common.h"
+#include "fig_stacks.h"
 #include "fig_plot.h"
 #include "outfile.h"
 
@@ -340,6 +341,10 @@ const cli_command_spec CLI_FIGURE = {
     "  table1   time per 1920x1080 frame of each method on examples/fig9a.json\n"
     "  aliasing plain, prefiltered (--antialias) and 4x4 super-sampled renders of scenes made\n"
     "           to alias against a 32x32 super-sampled reference, with dE00 maps and costs\n"
+    "  filters  transmission spectra of a Lyot and a folded Solc filter (stacks/ under --scenes)\n"
+    "  tape-art cellophane patches between crossed polarizers: a stained-glass picture\n"
+    "  stress-thickness  a disk whose stress varies through its thickness, dark-field\n"
+    "           polariscope: uniform, parabolic profile, principal directions turning\n"
     "  all      everything above\n\n"
     "Options:\n",
     OPTS,
@@ -362,21 +367,24 @@ int cmd_figure(int argc, char **argv)
     c.threads = (int)a.threads;
     const char *scenes = a.scenes;
     const int first_arg = p.first_arg;
-    if (first_arg >= argc) return cli_error(FIG_CMD, "missing figure name (fig5, fig6c, fig7, fig9, table1, aliasing or all)"), CLI_EXIT_USAGE;
+    if (first_arg >= argc) return cli_error(FIG_CMD, "missing figure name (fig5, fig6c, fig7, fig9, table1, aliasing, filters, tape-art, stress-thickness or all)"), CLI_EXIT_USAGE;
     if (first_arg + 1 < argc) return cli_error(FIG_CMD, "unexpected argument '%s'", argv[first_arg + 1]), CLI_EXIT_USAGE;
     const char *name = argv[first_arg];
     char default_scenes[4096];
     if (!scenes) scenes = cli_data_path("examples", default_scenes, sizeof default_scenes);
-    static const char *const NAMES[] = {"fig5", "fig6c", "fig7", "fig9", "table1", "aliasing"};
-    enum { NFIG = 6 };
+    static const char *const NAMES[] = {"fig5",     "fig6c",    "fig7",     "fig9",
+                                        "table1",   "aliasing", "filters",  "tape-art",
+                                        "stress-thickness"};
+    enum { NFIG = 9 };
     int sel[NFIG] = {0}, any = 0;
     for (int i = 0; i < NFIG; i++) any |= sel[i] = !strcmp(name, NAMES[i]) || !strcmp(name, "all");
     if (!any)
-        return cli_error(FIG_CMD, "unknown figure '%s' (expected fig5, fig6c, fig7, fig9, table1, aliasing or all)", name),
+        return cli_error(FIG_CMD, "unknown figure '%s' (expected fig5, fig6c, fig7, fig9, table1, aliasing, filters, tape-art, stress-thickness or all)", name),
                CLI_EXIT_USAGE;
     if (!c.dir) return cli_error(FIG_CMD, "missing -o DIR"), CLI_EXIT_USAGE;
     /* Everything the figures read is checked before the first one is computed. */
     if ((sel[3] || sel[4]) && check_scenes(scenes, sel[3], sel[4])) return CLI_EXIT_USAGE;
+    if (sel[6] && fig_filters_check(scenes)) return CLI_EXIT_USAGE;
     if (prepare_dir(c.dir)) return CLI_EXIT_FAIL;
     if (c.threads > 0) omp_set_num_threads(c.threads);
 
@@ -398,7 +406,10 @@ int cmd_figure(int argc, char **argv)
         case 2: rc = fig7(&c); break;
         case 3: rc = fig9(&c, scenes); break;
         case 4: rc = table1(&c, scenes); break;
-        default: rc = fig_aliasing(c.dir, scenes, c.quick, c.threads); break;
+        case 5: rc = fig_aliasing(c.dir, scenes, c.quick, c.threads); break;
+        case 6: rc = fig_filters(&c, scenes); break;
+        case 7: rc = fig_tape_art(&c); break;
+        default: rc = fig_stress_thickness(&c); break;
         }
         if (rc == CLI_EXIT_OK) fprintf(stderr, "biref figure: %s done in %.1f s\n", NAMES[i], biref_wall_seconds() - t0);
     }

@@ -33,14 +33,41 @@ enum { LYOT_STAGES = 4 };
 int fig_filters_check(const char *examples)
 {
     biref_stack s;
-    return load_example(examples, "lyot_stage1.json", &s) || load_example(examples, "solc_folded.json", &s);
+    return load_example(examples, "lyot_stage1.json", &s) || load_example(examples, "solc_folded.json", &s) ||
+           load_example(examples, "film_on_glass.json", &s);
+}
+
+enum { FILM_ANGLES = 86 };
+
+/* The film on glass: band-integrated reflectance (Y) s -> s, p -> p, s -> p and unpolarized against
+ * the angle of incidence, by the path expansion (coherent in the film, incoherent in the glass). */
+static int film_reflectance(const fig_ctx *c, const biref_stack *film, double theta[FILM_ANGLES],
+                            double Y[4][FILM_ANGLES])
+{
+    for (int t = 0; t < FILM_ANGLES; t++) {
+        theta[t] = t;
+        biref_stack_state st;
+        biref_spectrum sp;
+        char msg[BIREF_MSG_SIZE];
+        if (biref_stack_prepare(film, t * M_PI / 180, &st) != BIREF_OK ||
+            biref_stack_spectrum(c->sp, &st, NULL, NULL, &sp, NULL, NULL, NULL, msg, sizeof msg) != BIREF_OK)
+            return cli_error(FIG_CMD, "filters: film on glass at %d deg failed", t), -1;
+        Y[0][t] = sp.R[0][0][1];
+        Y[1][t] = sp.R[1][1][1];
+        Y[2][t] = sp.R[0][1][1];
+        Y[3][t] = 0.5 * (sp.R[0][0][1] + sp.R[0][1][1] + sp.R[1][0][1] + sp.R[1][1][1]);
+    }
+    return 0;
 }
 
 int fig_filters(const fig_ctx *c, const char *examples)
 {
-    biref_stack lyot, solc;
-    if (load_example(examples, "lyot_stage1.json", &lyot) || load_example(examples, "solc_folded.json", &solc))
+    biref_stack lyot, solc, film;
+    if (load_example(examples, "lyot_stage1.json", &lyot) || load_example(examples, "solc_folded.json", &solc) ||
+        load_example(examples, "film_on_glass.json", &film))
         return CLI_EXIT_USAGE;
+    double film_curves[4][FILM_ANGLES], film_theta[FILM_ANGLES];
+    if (film_reflectance(c, &film, film_theta, film_curves)) return CLI_EXIT_FAIL;
     const int n = c->quick ? 400 : 3200;
     double *buf = malloc(sizeof(double) * (size_t)n * (LYOT_STAGES + 5));
     if (!buf) return cli_error(FIG_CMD, "out of memory"), CLI_EXIT_FAIL;
@@ -80,7 +107,7 @@ int fig_filters(const fig_ctx *c, const char *examples)
     if (fig_close_csv(out, path)) return free(buf), CLI_EXIT_FAIL;
 
     fig_out_path(c, "filters.png", path, sizeof path);
-    if (fig_begin(path, 1200, 1000, 1, 2)) return free(buf), CLI_EXIT_FAIL;
+    if (fig_begin(path, 1200, 1500, 1, 3)) return free(buf), CLI_EXIT_FAIL;
     char title[160];
     snprintf(title, sizeof title, "Lyot filter: %d quartz stages at 45°, %.0f–%.0f µm, polarizers between", LYOT_STAGES,
              l1->thickness_nm / 1e3, l1->thickness_nm * (1 << (LYOT_STAGES - 1)) / 1e3);
@@ -99,6 +126,13 @@ int fig_filters(const fig_ctx *c, const char *examples)
     fig_plot_line(n, lam, so, FIG_BLUE, 1.0);
     static const char *const sl[] = {"stack, in air (Fresnel losses)", "ideal tan²2ρ cos²χ (sin Nχ / sin χ)²"};
     fig_plot_legend(2, sl, lc, lw, 0);
+    fig_plot_panel(0, 85, 0, 1.0, "θ (degrees)", "reflectance (Y)",
+                   "film on glass: 400 nm birefringent film on 1 mm glass, band-integrated (expansion)");
+    static const int fc[] = {FIG_BLUE, FIG_RED, FIG_GREEN, FIG_BLACK};
+    for (int k = 0; k < 4; k++) fig_plot_line(FILM_ANGLES, film_theta, film_curves[k], fc[k], 1.5);
+    static const char *const fl[] = {"s → s", "p → p", "s → p (the film's birefringence)", "unpolarized"};
+    static const double fw[] = {1.5, 1.5, 1.5, 1.5};
+    fig_plot_legend(4, fl, fc, fw, FIG_LEFT);
     free(buf);
     return fig_end(path) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
 }
@@ -107,43 +141,54 @@ int fig_filters(const fig_ctx *c, const char *examples)
 /* Cellophane art                                                           */
 /* ------------------------------------------------------------------------ */
 
-/* One patch: `n` layers of the cellophane at these azimuths (degrees). */
+/* One patch: `n` layers at these azimuths (degrees), each cellophane (film 0) or packing tape
+ * (film 1). */
 typedef struct {
     int n;
     double deg[6];
+    int film[6];
 } patch;
 
-/* Cellophane-like film: about 27 µm, birefringence 0.0095 (a quarter to a half wave per layer). */
-static const double CELLO_O = 1.50, CELLO_E = 1.5095, CELLO_NM = 27e3;
+/* Cellophane-like film (27 µm) and packing tape (45 µm), birefringence 0.0095: about 260 and 430 nm
+ * of retardance per layer, so a few layers run through the first orders of the Michel-Lévy chart. */
+static const double FILM_O = 1.50, FILM_E = 1.5095, FILM_NM[2] = {27e3, 45e3};
 
 static const patch PATCHES[] = {
-    {0, {0}},                          /* background: no film, dark between crossed polarizers */
-    {1, {45}},          {2, {45, 45}},         {3, {45, 45, 45}},         {4, {45, 45, 45, 45}},
-    {5, {45, 45, 45, 45, 45}},         {6, {45, 45, 45, 45, 45, 45}},     /* sun sectors */
-    {2, {30, 60}},      {3, {20, 45, 70}},     {2, {45, -45}},            {3, {45, 45, -20}}, /* hills */
-    {4, {10, 45, 45, 80}}, {3, {60, 60, 15}},  {2, {22.5, 22.5}},         {1, {22.5}},        /* ring */
+    {0, {0}, {0}}, /* background: no film, dark between crossed polarizers */
+    /* the rose window: six sectors and the centre */
+    {1, {45}, {1}},
+    {2, {45, 45}, {0, 0}},
+    {2, {45, 45}, {0, 1}},
+    {3, {45, 45, 45}, {0, 0, 0}},
+    {3, {45, 45, 45}, {0, 0, 1}},
+    {3, {45, 45, 45}, {0, 1, 1}},
+    {4, {45, 45, 45, 45}, {1, 1, 1, 0}},
+    /* the ring: the same two layers turned, then crossed */
+    {2, {45, 45}, {1, 1}},
+    {2, {22.5, 22.5}, {1, 1}},
+    {2, {45, -45}, {1, 0}},
+    {3, {45, 45, 80}, {0, 1, 0}},
+    /* three mountains */
+    {4, {45, 45, 45, 45}, {0, 0, 0, 1}},
+    {5, {45, 45, 45, 45, 45}, {0, 1, 1, 1, 0}},
+    {3, {45, 45, 45}, {1, 1, 1}},
 };
 
-/* The patch under pixel (x, y) of a w x h picture: a sun of six sectors, a ring, four hills. */
-static int patch_at(double x, double y, int w, int h)
+/* The patch under the point (u, v) of the picture (0..1 across and down; a = width / height). */
+static int patch_at(double u, double v, double a)
 {
-    const double u = x / w, v = y / h, a = (double)w / h;
-    double dx = (u - 0.3) * a, dy = v - 0.38, r = sqrt(dx * dx + dy * dy);
-    if (r < 0.22) {
-        double t = atan2(dy, dx) + M_PI; /* 0 .. 2 pi */
-        return 1 + (int)(t / (2 * M_PI) * 6) % 6;
-    }
-    dx = (u - 0.74) * a, dy = v - 0.33, r = sqrt(dx * dx + dy * dy);
-    if (r > 0.13 && r < 0.24) return 11 + (dy < 0) * 2 + (dx < 0);
-    const double hill[4][3] = {{0.12, 0.78, 0.28}, {0.45, 0.72, 0.3}, {0.78, 0.8, 0.32}, {1.0, 0.9, 0.25}};
-    for (int k = 0; k < 4; k++) {
-        const double hx = (u - hill[k][0]) * a / hill[k][2], top = hill[k][1] - 0.18 * exp(-hx * hx * 4);
-        if (v > top && fabs(hx) < 1.6) return 7 + k;
-    }
+    double dx = (u - 0.27) * a, dy = v - 0.38, r = sqrt(dx * dx + dy * dy);
+    if (r < 0.07) return 7;
+    if (r < 0.25) return 1 + (int)((atan2(dy, dx) + M_PI) / (2 * M_PI) * 6) % 6;
+    dx = (u - 0.76) * a, dy = v - 0.3, r = sqrt(dx * dx + dy * dy);
+    if (r > 0.1 && r < 0.19) return 8 + (dy < 0) * 2 + (dx < 0);
+    static const double m[3][3] = {{0.62, 0.58, 0.5}, {0.3, 0.66, 0.6}, {0.9, 0.62, 0.45}}; /* apex u, v; slope */
+    for (int k = 0; k < 3; k++)
+        if (v > m[k][1] + fabs(u - m[k][0]) * a * m[k][2]) return 12 + k;
     return 0;
 }
 
-static biref_stack cello_stack(const patch *p)
+static biref_stack film_stack(const patch *p)
 {
     biref_stack s;
     memset(&s, 0, sizeof s);
@@ -151,7 +196,7 @@ static biref_stack cello_stack(const patch *p)
     s.n_layers = p->n;
     for (int k = 0; k < p->n; k++) {
         const double t = p->deg[k] * M_PI / 180;
-        s.layers[k] = (biref_layer){CELLO_O, CELLO_E, {cos(t), 0.0, sin(t)}, CELLO_NM, 0};
+        s.layers[k] = (biref_layer){FILM_O, FILM_E, {cos(t), 0.0, sin(t)}, FILM_NM[p->film[k]], 0};
     }
     return s;
 }
@@ -169,9 +214,9 @@ int fig_tape_art(const fig_ctx *c)
     biref_outfile *out = fig_open_csv(c, "tape_art.csv", path, sizeof path);
     if (!out) return CLI_EXIT_FAIL;
     FILE *f = biref_outfile_stream(out);
-    fprintf(f, "patch,layers,azimuths_deg,X,Y,Z,R8,G8,B8,method,path_groups,fallback\n");
+    fprintf(f, "patch,layers,azimuths_deg,films,X,Y,Z,R8,G8,B8,method,path_groups,fallback\n");
     for (int k = 1; k < NP; k++) {
-        biref_stack s = cello_stack(&PATCHES[k]);
+        biref_stack s = film_stack(&PATCHES[k]);
         biref_stack_state st;
         biref_spectrum sp;
         biref_stack_spectrum_info info;
@@ -184,6 +229,8 @@ int fig_tape_art(const fig_ctx *c)
         for (int j = 0; j < 3; j++) rgb[k][j] = (unsigned char)lrint(255 * fmin(fmax(lin[j], 0.0), 1.0));
         fprintf(f, "%d,%d,\"", k, PATCHES[k].n);
         for (int j = 0; j < PATCHES[k].n; j++) fprintf(f, "%s%g", j ? " " : "", PATCHES[k].deg[j]);
+        fprintf(f, "\",\"");
+        for (int j = 0; j < PATCHES[k].n; j++) fprintf(f, "%s%s", j ? " " : "", PATCHES[k].film[j] ? "tape" : "cellophane");
         fprintf(f, "\",%.5f,%.5f,%.5f,%d,%d,%d,expansion,%d,%d\n", xyz[k][0], xyz[k][1], xyz[k][2], rgb[k][0],
                 rgb[k][1], rgb[k][2], info.groups[0], info.fallback);
     }
@@ -192,9 +239,11 @@ int fig_tape_art(const fig_ctx *c)
     if (!img) return cli_error(FIG_CMD, "out of memory"), CLI_EXIT_FAIL;
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
-            const int k = patch_at(x + 0.5, y + 0.5, w, h);
-            /* Lead lines: where the patch changes within two pixels. */
-            const int lead = k != patch_at(x + 2.5, y + 0.5, w, h) || k != patch_at(x + 0.5, y + 2.5, w, h);
+            const double a = (double)w / h, u = (x + 0.5) / w, v = (y + 0.5) / h, du = 2.5 / w, dv = 2.5 / h;
+            const int k = patch_at(u, v, a);
+            /* Lead lines: where the patch changes within a few pixels. */
+            const int lead = k != patch_at(u + du, v, a) || k != patch_at(u, v + dv, a) ||
+                             k != patch_at(u + du, v + dv, a);
             for (int j = 0; j < 3; j++) img[((size_t)y * w + x) * 3 + j] = lead ? 40 : rgb[k][j];
         }
     fig_out_path(c, "tape_art.png", path, sizeof path);

@@ -19,6 +19,15 @@ for f in fig5.png fig6c.png; do
   fi
 done
 
+# The error of ignoring dispersion: the thin rutile plate between crossed filters changes colour
+# visibly (mean dE00 well above 1), the numbers and the picture are written.
+expect_ok "dispersion quick" figure dispersion -o "$out" --quick
+for f in dispersion.png dispersion.csv dispersion_summary.csv; do
+  [ -s "$out/$f" ] || { echo "FAIL: $f missing or empty"; fails=$((fails + 1)); }
+done
+awk -F, '$1 == "rutile 10 µm" && $2 == "crossed s/p" && $3 == "T" { found = 1; if ($4 < 5) exit 1 }
+         END { if (!found) exit 1 }' "$out/dispersion_summary.csv" ||
+  { echo "FAIL (dispersion: rutile crossed T should differ by dE00 > 5 on average)"; fails=$((fails + 1)); }
 # The stack figures (docs/STACKS.md): spectra of the filters, the cellophane picture, the stressed disk.
 expect_ok "filters quick" figure filters -o "$out" --quick
 expect_ok "tape-art quick" figure tape-art -o "$out" --quick

@@ -23,7 +23,7 @@ static float *render(const biref_scene *sc, biref_method method, int samples, in
     opt.threads = threads;
     biref_renderer *r = NULL;
     char msg[256];
-    if (biref_renderer_create(sc, &opt, &r, msg, sizeof msg) != BIREF_OK) {
+    if (biref_renderer_create(test_sp(), sc, &opt, &r, msg, sizeof msg) != BIREF_OK) {
         fprintf(stderr, "renderer_create: %s\n", msg);
         return NULL;
     }
@@ -162,7 +162,8 @@ static void test_crossed(void)
         CHECK(ymax > 0.05); /* the slab lets light through the crossed pair */
         free(x);
     }
-    /* World-fixed linear polarizer and analyzer: analytic refuses them, numeric renders. */
+    /* World-fixed linear polarizer and analyzer: the shader refuses them for a method that cannot
+     * integrate a general light (the analytic one), numeric renders. */
     biref_scene wf;
     /* Axes: world up and the camera's horizontal (both across the view direction). */
     if (white_scene(&wf, "20", "{\"type\": \"linear\", \"direction\": [0, 1, 0]}",
@@ -173,17 +174,17 @@ static void test_crossed(void)
     biref_render_options_default(&opt);
     biref_renderer *r = NULL;
     char msg[256] = "";
-    CHECK(biref_renderer_create(&wf, &opt, &r, msg, sizeof msg) == BIREF_ERR_INVALID);
-    CHECK(strstr(msg, "world-fixed polarizers need --method expansion, numeric or ground-truth") != NULL);
+    CHECK(biref_renderer_create(test_sp(), &wf, &opt, &r, msg, sizeof msg) == BIREF_ERR_INVALID);
+    CHECK(strstr(msg, "the analytic method cannot integrate this light") != NULL);
     x = render(&wf, BIREF_METHOD_NUMERIC, 32, 2, NULL);
     if (x) {
         /* The two axes are orthogonal but not both transverse to every ray, so the corner leaks
          * a little (the projections are not orthogonal); it stays well below parallel axes. */
         double corner = x[1];
         free(x);
-        wf.filter.direction[0] = 0;
-        wf.filter.direction[1] = 1;
-        wf.filter.direction[2] = 0;
+        wf.light.analyzer_axis[0] = 0;
+        wf.light.analyzer_axis[1] = 1;
+        wf.light.analyzer_axis[2] = 0;
         x = render(&wf, BIREF_METHOD_NUMERIC, 32, 2, NULL);
         if (x) {
             printf("world-fixed polarizers, background corner Y: crossed %.4f, parallel %.4f\n", corner, x[1]);

@@ -58,7 +58,7 @@ static void analytic_method_refuses_world_fixed_polarizer(void)
     biref_render_options_default(&opt);
     biref_renderer *r = NULL;
     char msg[256];
-    CHECK(biref_renderer_create(&sc, &opt, &r, msg, sizeof msg) == BIREF_ERR_INVALID && r == NULL);
+    CHECK(biref_renderer_create(test_sp(), &sc, &opt, &r, msg, sizeof msg) == BIREF_ERR_INVALID && r == NULL);
 }
 
 int main(int argc, char **argv)

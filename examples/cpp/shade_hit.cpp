@@ -21,10 +21,18 @@ int main()
         return 1;
     }
 
-    // One shader (method, light, analyzer) for the whole frame; RAII releases it.
+    // One spectral context per process, and one shader (method, light) for the whole frame
+    // (analytic method, unpolarized light: the nullptr defaults); RAII releases both, the shader
+    // first.
     char msg[256];
+    biref_spectral *raw_sp = nullptr;
+    if (biref_spectral_create(nullptr, &raw_sp, msg, sizeof msg) != BIREF_OK) {
+        std::fprintf(stderr, "shade_hit: %s\n", msg);
+        return 1;
+    }
+    std::unique_ptr<biref_spectral, decltype(&biref_spectral_destroy)> sp(raw_sp, biref_spectral_destroy);
     biref_shader *raw = nullptr;
-    if (biref_shader_create(nullptr, nullptr, nullptr, &raw, msg, sizeof msg) != BIREF_OK) {
+    if (biref_shader_create(sp.get(), nullptr, nullptr, &raw, msg, sizeof msg) != BIREF_OK) {
         std::fprintf(stderr, "shade_hit: %s\n", msg);
         return 1;
     }

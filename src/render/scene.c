@@ -14,7 +14,7 @@
 #include "biref/render.h"
 #include "error.h"
 #include "io/json_strict.h"
-#include "render/vec3.h"
+#include "shading/vec3.h"
 
 /* A JSON path such as "slabs[2].normal" names every error. 96 bytes hold the deepest path. */
 typedef struct {
@@ -362,7 +362,21 @@ static biref_status parse_environment(pctx *c, const cJSON *env, biref_environme
     return s;
 }
 
-static biref_status parse_polarization(pctx *c, const cJSON *pol, biref_polarization *out)
+/* The scene file's two light objects as written; the parser turns them into one biref_light
+ * (scene_light). */
+typedef enum { POL_UNPOLARIZED, POL_SP, POL_LINEAR } pol_type;
+typedef struct {
+    pol_type type;
+    double s, p;         /* POL_SP: fractions, normalised to s + p = 1 */
+    double direction[3]; /* POL_LINEAR: world-fixed polarizer axis */
+} scene_pol;
+typedef enum { FILTER_NONE, FILTER_S, FILTER_P, FILTER_LINEAR } filter_type;
+typedef struct {
+    filter_type type;
+    double direction[3]; /* FILTER_LINEAR: world-fixed analyzer axis */
+} scene_filter;
+
+static biref_status parse_polarization(pctx *c, const cJSON *pol, scene_pol *out)
 {
     static const char *const keys[] = {"type", "s", "p", "direction", NULL};
     const char *w = "light.polarization";
@@ -372,10 +386,10 @@ static biref_status parse_polarization(pctx *c, const cJSON *pol, biref_polariza
     if (!s) s = get_string(c, pol, w, "type", 1, &type);
     if (s) return s;
     if (!strcmp(type, "unpolarized")) {
-        out->type = BIREF_POL_UNPOLARIZED;
+        out->type = POL_UNPOLARIZED;
         out->s = out->p = 0.5;
     } else if (!strcmp(type, "sp")) {
-        out->type = BIREF_POL_SP;
+        out->type = POL_SP;
         s = get_number(c, pol, w, "s", 1, &out->s);
         if (!s) s = get_number(c, pol, w, "p", 1, &out->p);
         if (s) return s;
@@ -386,25 +400,25 @@ static biref_status parse_polarization(pctx *c, const cJSON *pol, biref_polariza
         out->s /= sum;
         out->p /= sum;
     } else if (!strcmp(type, "linear")) {
-        out->type = BIREF_POL_LINEAR;
+        out->type = POL_LINEAR;
         s = get_direction(c, pol, w, "direction", 1, out->direction);
         if (s) return s;
     } else {
         return FAIL(c, "light.polarization.type", "unknown type '%s' (expected unpolarized, sp or linear)", type);
     }
     /* Fields that belong to another type are mistakes (e.g. "s" with type linear). */
-    if (out->type != BIREF_POL_SP) {
+    if (out->type != POL_SP) {
         if (cJSON_GetObjectItemCaseSensitive(pol, "s"))
             return FAIL(c, "light.polarization.s", "only allowed with type sp");
         if (cJSON_GetObjectItemCaseSensitive(pol, "p"))
             return FAIL(c, "light.polarization.p", "only allowed with type sp");
     }
-    if (out->type != BIREF_POL_LINEAR && cJSON_GetObjectItemCaseSensitive(pol, "direction"))
+    if (out->type != POL_LINEAR && cJSON_GetObjectItemCaseSensitive(pol, "direction"))
         return FAIL(c, "light.polarization.direction", "only allowed with type linear");
     return BIREF_OK;
 }
 
-static biref_status parse_filter(pctx *c, const cJSON *f, biref_filter *out)
+static biref_status parse_filter(pctx *c, const cJSON *f, scene_filter *out)
 {
     static const char *const keys[] = {"type", "direction", NULL};
     const char *w = "filter";
@@ -414,22 +428,22 @@ static biref_status parse_filter(pctx *c, const cJSON *f, biref_filter *out)
     if (!s) s = get_string(c, f, w, "type", 1, &type);
     if (s) return s;
     if (!strcmp(type, "none"))
-        out->type = BIREF_FILTER_NONE;
+        out->type = FILTER_NONE;
     else if (!strcmp(type, "s"))
-        out->type = BIREF_FILTER_S;
+        out->type = FILTER_S;
     else if (!strcmp(type, "p"))
-        out->type = BIREF_FILTER_P;
+        out->type = FILTER_P;
     else if (!strcmp(type, "linear"))
-        out->type = BIREF_FILTER_LINEAR;
+        out->type = FILTER_LINEAR;
     else
         return FAIL(c, "filter.type", "unknown type '%s' (expected none, s, p or linear)", type);
-    if (out->type == BIREF_FILTER_LINEAR) return get_direction(c, f, w, "direction", 1, out->direction);
+    if (out->type == FILTER_LINEAR) return get_direction(c, f, w, "direction", 1, out->direction);
     if (cJSON_GetObjectItemCaseSensitive(f, "direction"))
         return FAIL(c, "filter.direction", "only allowed with type linear");
     return BIREF_OK;
 }
 
-static biref_status parse_light(pctx *c, const cJSON *light, biref_scene *sc)
+static biref_status parse_light(pctx *c, const cJSON *light, biref_scene *sc, scene_pol *pol)
 {
     static const char *const keys[] = {"panel", "panels", "environment", "polarization", NULL};
     const char *w = "light";
@@ -466,7 +480,7 @@ static biref_status parse_light(pctx *c, const cJSON *light, biref_scene *sc)
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(light, "environment");
     if (v && (s = parse_environment(c, v, &sc->env))) return s;
     v = cJSON_GetObjectItemCaseSensitive(light, "polarization");
-    if (v && (s = parse_polarization(c, v, &sc->polarization))) return s;
+    if (v && (s = parse_polarization(c, v, pol))) return s;
     return BIREF_OK;
 }
 
@@ -487,9 +501,18 @@ static void scene_defaults(biref_scene *sc)
     v3_set(sc->env.check_a, 0.80, 0.80, 0.80);
     v3_set(sc->env.check_b, 0.10, 0.10, 0.10);
     sc->env.check_size = 0.5;
-    sc->polarization.type = BIREF_POL_UNPOLARIZED;
-    sc->polarization.s = sc->polarization.p = 0.5;
-    sc->filter.type = BIREF_FILTER_NONE;
+    static const double half[2] = {0.5, 0.5}, pass[2] = {1.0, 1.0};
+    biref_light_sp(half, pass, &sc->light);
+}
+
+/* The paper's s/p light and mask, with the world-fixed polarizer and analyzer put in. */
+static void scene_light(const scene_pol *pol, const scene_filter *f, biref_light *out)
+{
+    const double w[2] = {pol->type == POL_SP ? pol->s : 0.5, pol->type == POL_SP ? pol->p : 0.5};
+    const double mask[2] = {f->type == FILTER_P ? 0.0 : 1.0, f->type == FILTER_S ? 0.0 : 1.0};
+    biref_light_sp(w, mask, out);
+    if (pol->type == POL_LINEAR) biref_light_world_polarizer(out, pol->direction);
+    if (f->type == FILTER_LINEAR) biref_light_world_analyzer(out, f->direction);
 }
 
 biref_status biref_scene_parse(const char *text, size_t len, biref_scene *out, char *msg, size_t msg_len)
@@ -503,6 +526,8 @@ biref_status biref_scene_parse(const char *text, size_t len, biref_scene *out, c
 
     biref_scene sc;
     scene_defaults(&sc);
+    scene_pol pol = {POL_UNPOLARIZED, 0.5, 0.5, {0, 0, 0}};
+    scene_filter filter = {FILTER_NONE, {0, 0, 0}};
     static const char *const keys[] = {"camera", "medium", "slabs", "light", "filter", NULL};
     if (!cJSON_IsObject(root)) {
         s = FAIL(c, "scene", "expected a JSON object at the top level, got %s", type_name(root));
@@ -539,9 +564,10 @@ biref_status biref_scene_parse(const char *text, size_t len, biref_scene *out, c
     }
     sc.n_slabs = n;
     if ((s = member(c, root, "", "light", 0, &v))) goto done;
-    if (v && (s = parse_light(c, v, &sc))) goto done;
+    if (v && (s = parse_light(c, v, &sc, &pol))) goto done;
     if ((s = member(c, root, "", "filter", 0, &v))) goto done;
-    if (v && (s = parse_filter(c, v, &sc.filter))) goto done;
+    if (v && (s = parse_filter(c, v, &filter))) goto done;
+    scene_light(&pol, &filter, &sc.light);
     if ((s = biref_scene_validate(&sc, msg, msg_len))) goto done;
     *out = sc;
 done:
@@ -716,26 +742,25 @@ biref_status biref_scene_validate(const biref_scene *sc, char *msg, size_t msg_l
         return FAIL(c, "camera.exposure", "%g times the brightest light (%g) must be at most 1e30", sc->camera.exposure,
                     brightest);
 
-    const biref_polarization *pol = &sc->polarization;
-    switch (pol->type) {
-    case BIREF_POL_UNPOLARIZED: break;
-    case BIREF_POL_SP:
-        if (!(isfinite(pol->s) && isfinite(pol->p) && pol->s >= 0 && pol->p >= 0 && fabs(pol->s + pol->p - 1) < 1e-9))
+    /* A scene's light is what a scene file can say (docs/SCENES.md), which every back-end
+     * (CPU, GLSL) takes: s/p fractions or a world-fixed polarizer, no filter, s, p or a
+     * world-fixed analyzer. */
+    const biref_light *l = &sc->light;
+    if (l->world_polarizer) {
+        if (!unit_vec(l->polarizer_axis)) return FAIL(c, "light.polarization.direction", "must be a unit vector");
+    } else {
+        const double ws = creal(l->C[0][0]), wp = creal(l->C[1][1]);
+        if (!(l->C[0][1] == 0 && l->C[1][0] == 0 && cimag(l->C[0][0]) == 0 && cimag(l->C[1][1]) == 0 &&
+              isfinite(ws) && isfinite(wp) && ws >= 0 && wp >= 0 && fabs(ws + wp - 1) < 1e-9))
             return FAIL(c, "light.polarization", "s and p must be non-negative fractions summing to 1");
-        break;
-    case BIREF_POL_LINEAR:
-        if (!unit_vec(pol->direction)) return FAIL(c, "light.polarization.direction", "must be a unit vector");
-        break;
-    default: return FAIL(c, "light.polarization.type", "unknown type");
     }
-    switch (sc->filter.type) {
-    case BIREF_FILTER_NONE:
-    case BIREF_FILTER_S:
-    case BIREF_FILTER_P: break;
-    case BIREF_FILTER_LINEAR:
-        if (!unit_vec(sc->filter.direction)) return FAIL(c, "filter.direction", "must be a unit vector");
-        break;
-    default: return FAIL(c, "filter.type", "unknown type");
+    if (l->world_analyzer) {
+        if (!unit_vec(l->analyzer_axis)) return FAIL(c, "filter.direction", "must be a unit vector");
+    } else if (l->has_analyzer) {
+        const double ms = creal(l->P[0][0]), mp = creal(l->P[1][1]);
+        if (!(l->P[0][1] == 0 && l->P[1][0] == 0 && cimag(l->P[0][0]) == 0 && cimag(l->P[1][1]) == 0 &&
+              (ms == 0 || ms == 1) && (mp == 0 || mp == 1)))
+            return FAIL(c, "filter", "must pass s, p or both (or be a world-fixed linear analyzer)");
     }
     return BIREF_OK;
 }

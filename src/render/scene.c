@@ -14,6 +14,7 @@
 #include "biref/render.h"
 #include "error.h"
 #include "io/json_strict.h"
+#include "render/scene_light.h"
 #include "shading/vec3.h"
 
 /* A JSON path such as "slabs[2].normal" names every error. 96 bytes hold the deepest path. */
@@ -362,20 +363,6 @@ static biref_status parse_environment(pctx *c, const cJSON *env, biref_environme
     return s;
 }
 
-/* The scene file's two light objects as written; the parser turns them into one biref_light
- * (scene_light). */
-typedef enum { POL_UNPOLARIZED, POL_SP, POL_LINEAR } pol_type;
-typedef struct {
-    pol_type type;
-    double s, p;         /* POL_SP: fractions, normalised to s + p = 1 */
-    double direction[3]; /* POL_LINEAR: world-fixed polarizer axis */
-} scene_pol;
-typedef enum { FILTER_NONE, FILTER_S, FILTER_P, FILTER_LINEAR } filter_type;
-typedef struct {
-    filter_type type;
-    double direction[3]; /* FILTER_LINEAR: world-fixed analyzer axis */
-} scene_filter;
-
 static biref_status parse_polarization(pctx *c, const cJSON *pol, scene_pol *out)
 {
     static const char *const keys[] = {"type", "s", "p", "direction", NULL};
@@ -505,16 +492,6 @@ static void scene_defaults(biref_scene *sc)
     biref_light_sp(half, pass, &sc->light);
 }
 
-/* The paper's s/p light and mask, with the world-fixed polarizer and analyzer put in. */
-static void scene_light(const scene_pol *pol, const scene_filter *f, biref_light *out)
-{
-    const double w[2] = {pol->type == POL_SP ? pol->s : 0.5, pol->type == POL_SP ? pol->p : 0.5};
-    const double mask[2] = {f->type == FILTER_P ? 0.0 : 1.0, f->type == FILTER_S ? 0.0 : 1.0};
-    biref_light_sp(w, mask, out);
-    if (pol->type == POL_LINEAR) biref_light_world_polarizer(out, pol->direction);
-    if (f->type == FILTER_LINEAR) biref_light_world_analyzer(out, f->direction);
-}
-
 biref_status biref_scene_parse(const char *text, size_t len, biref_scene *out, char *msg, size_t msg_len)
 {
     pctx ctx = {msg, msg_len}, *c = &ctx;
@@ -567,7 +544,7 @@ biref_status biref_scene_parse(const char *text, size_t len, biref_scene *out, c
     if (v && (s = parse_light(c, v, &sc, &pol))) goto done;
     if ((s = member(c, root, "", "filter", 0, &v))) goto done;
     if (v && (s = parse_filter(c, v, &filter))) goto done;
-    scene_light(&pol, &filter, &sc.light);
+    biref_scene_light(&pol, &filter, &sc.light);
     if ((s = biref_scene_validate(&sc, msg, msg_len))) goto done;
     *out = sc;
 done:
@@ -742,25 +719,5 @@ biref_status biref_scene_validate(const biref_scene *sc, char *msg, size_t msg_l
         return FAIL(c, "camera.exposure", "%g times the brightest light (%g) must be at most 1e30", sc->camera.exposure,
                     brightest);
 
-    /* A scene's light is what a scene file can say (docs/SCENES.md), which every back-end
-     * (CPU, GLSL) takes: s/p fractions or a world-fixed polarizer, no filter, s, p or a
-     * world-fixed analyzer. */
-    const biref_light *l = &sc->light;
-    if (l->world_polarizer) {
-        if (!unit_vec(l->polarizer_axis)) return FAIL(c, "light.polarization.direction", "must be a unit vector");
-    } else {
-        const double ws = creal(l->C[0][0]), wp = creal(l->C[1][1]);
-        if (!(l->C[0][1] == 0 && l->C[1][0] == 0 && cimag(l->C[0][0]) == 0 && cimag(l->C[1][1]) == 0 &&
-              isfinite(ws) && isfinite(wp) && ws >= 0 && wp >= 0 && fabs(ws + wp - 1) < 1e-9))
-            return FAIL(c, "light.polarization", "s and p must be non-negative fractions summing to 1");
-    }
-    if (l->world_analyzer) {
-        if (!unit_vec(l->analyzer_axis)) return FAIL(c, "filter.direction", "must be a unit vector");
-    } else if (l->has_analyzer) {
-        const double ms = creal(l->P[0][0]), mp = creal(l->P[1][1]);
-        if (!(l->P[0][1] == 0 && l->P[1][0] == 0 && cimag(l->P[0][0]) == 0 && cimag(l->P[1][1]) == 0 &&
-              (ms == 0 || ms == 1) && (mp == 0 || mp == 1)))
-            return FAIL(c, "filter", "must pass s, p or both (or be a world-fixed linear analyzer)");
-    }
-    return BIREF_OK;
+    return biref_scene_light_check(&sc->light, c->msg, c->msg_len);
 }

@@ -17,6 +17,7 @@
 
 #include "biref/common.h"
 #include "biref/integrator.h"
+#include "biref/material.h"
 #include "biref/optics.h"
 #include "biref/polarization.h"
 #include "biref/spectral.h"
@@ -101,6 +102,24 @@ BIREF_API void biref_expansion_tail(const biref_spectral *sp, const biref_slab_s
 BIREF_API biref_status biref_integrate_batch(const biref_integrator *it, const biref_slab_state *states, size_t n,
                                              biref_sides sides, const biref_light *lights, size_t light_stride,
                                              biref_integration *out, biref_status *status);
+
+/* ------------------------------------------------------------------------- */
+/* Dispersive materials (material.h) through a numeric plan                    */
+/* ------------------------------------------------------------------------- */
+
+/* The dispersive counterparts of biref_spectrum_numeric and biref_spectrum_numeric_polarized:
+ * the slab (geometry's axis, thickness, eta_i; the material's indices) prepared anew at every
+ * sample wavelength of the plan; with constant indices the same sums in the same order.
+ * BIREF_ERR_INVALID for a geometry or angle failing their checks or a sample where the material
+ * is unphysical; BIREF_ERR_SINGULAR from a sample's interface solve. */
+BIREF_API biref_status biref_spectrum_numeric_dispersive(const biref_numeric_plan *plan, const biref_material *m,
+                                                         const biref_slab *geometry, double theta_rad,
+                                                         biref_spectrum *out);
+BIREF_API biref_status biref_spectrum_numeric_dispersive_polarized(const biref_numeric_plan *plan,
+                                                                   const biref_material *m, const biref_slab *geometry,
+                                                                   double theta_rad, int which,
+                                                                   const biref_complex C[2][2],
+                                                                   const biref_complex P[2][2], double xyz[3]);
 
 #ifdef __cplusplus
 }

@@ -63,8 +63,6 @@ def zero_thickness(scene):
 MESSAGES = [
     ("SCENES.md", "biref render: error: scene.json: slabs[0].thickness_mm: must be positive", zero_thickness,
      ["render", "scene.json", "-o", "out.png"]),
-    ("SCENES.md", "the analytic method cannot integrate this light (a general coherency or analyzer)", None,
-     ["render", os.path.join(ROOT, "examples", "fig9c_analyzer45.json"), "-o", "out.png", "--method", "analytic"]),
 ]
 
 

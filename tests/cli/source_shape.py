@@ -48,7 +48,6 @@ MAX_FUNCTION_LINES = 120
 # stays the list of offenders); never raise a number.
 ALLOWED_FILES = {
     # path under src/: lines
-    "spectral/analytic_packet_kernel.inc": 858,
     "photoelastic/mesh.c": 772,
 }
 ALLOWED_FUNCTIONS = {

@@ -47,9 +47,14 @@ function slabMaterial(options) {
   });
 }
 
+// The mesh scenes' light: three.js's room environment and one directional light (the same in
+// every scene, so that their materials share programs).
 function roomEnvironment(scene) {
   scene.environment = pmrem.fromScene(new RoomEnvironment(), 0.04).texture;
   scene.background = new THREE.Color(0x202226);
+  const light = new THREE.DirectionalLight(0xffffff, 2.5);
+  light.position.set(1, 2, 1.5);
+  scene.add(light);
 }
 
 // ------------------------------------------------------------------------------ fig. 9c
@@ -225,9 +230,6 @@ function polariscope() {
 function gem() {
   const scene = new THREE.Scene();
   roomEnvironment(scene);
-  const light = new THREE.DirectionalLight(0xffffff, 2.5);
-  light.position.set(1, 2, 1.5);
-  scene.add(light);
   const camera = new THREE.PerspectiveCamera(35, W / H, 0.01, 50);
   camera.position.set(0.9, 1.7, 1.3);
   camera.lookAt(0, 0, 0);

@@ -97,9 +97,10 @@ function fig9c() {
       // The world optic axis in the plane's tangent frame (tangent, normal x tangent, normal).
       opticAxis: new THREE.Vector3(a.dot(t), a.dot(n.clone().cross(t)), a.dot(n)),
       polarization: pol[0] > 0.5 ? 'linear' : 'sp', polarizationS: pol[1],
-      polarizerDirection: vec('u_pol_dir'),
       analyzer: pol[3] > 0.5 ? 'linear' : mask[0] === 1 && mask[1] === 0 ? 's' : mask[0] === 0 ? 'p' : 'none',
-      analyzerDirection: vec('u_filter_dir'),
+      // Directions only for world-fixed filters (the s/p model exports zero vectors).
+      ...(pol[0] > 0.5 ? { polarizerDirection: vec('u_pol_dir') } : {}),
+      ...(pol[3] > 0.5 ? { analyzerDirection: vec('u_filter_dir') } : {}),
     });
     rectangle(i, 'slab', m);
   }

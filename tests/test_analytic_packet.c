@@ -17,6 +17,7 @@
 #include "spectral/phase_prefilter.h"
 #include "spectral/spectral_internal.h"
 #include "test_cases.h"
+#include "test_render_util.h"
 
 static int quick;
 
@@ -255,8 +256,8 @@ static float *render_with(const char *path, const char *isa, biref_antialias aa,
     opt.antialias = aa;
     biref_renderer *r = NULL;
     float *xyz = NULL;
-    if (biref_renderer_create(&sc, &opt, &r, msg, sizeof msg) == BIREF_OK) {
-        CHECK(!strcmp(biref_simd_isa_name(biref_integrator_simd(r->integrator)), isa));
+    if (biref_renderer_create(test_sp(), &sc, &opt, &r, msg, sizeof msg) == BIREF_OK) {
+        CHECK(!strcmp(biref_simd_isa_name(biref_integrator_simd(r->shader->it)), isa));
         xyz = malloc((size_t)w * h * 3 * sizeof *xyz);
         if (xyz && biref_render_image(r, xyz, NULL, NULL, NULL) != BIREF_OK) CHECK(0);
     }

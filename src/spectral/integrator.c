@@ -171,6 +171,8 @@ biref_status biref_integrate_footprint(const biref_integrator *it, const biref_s
 {
     out->order_used[0] = out->order_used[1] = -1;
     if (!(sides & BIREF_SIDE_BOTH) || (sides & ~BIREF_SIDE_BOTH)) return BIREF_ERR_INVALID;
+    /* World-fixed polarizers have no matrices until a shader resolves them for a ray. */
+    if (biref_light_is_world_fixed(light)) return BIREF_ERR_INVALID;
     if (it->plan && light->sp_model && sides == BIREF_SIDE_BOTH) {
         /* Both sides of the paper's light: one pass over the wavelengths gives all four pairs of
          * both, cheaper than two polarized passes (one Jones evaluation per wavelength). */

@@ -440,16 +440,27 @@ def _light(polarization, polarizer, stokes, analyzer):
     return w_in, mask, S, P, pol_name, an
 
 
-def _dispersive_one(plan, mat, sl, theta, general, C, P, w_in, mask, spec, xyz, mixed, idx):
-    """One angle of a dispersive slab: n(lambda) at every sample of the plan."""
-    _check(_lib.biref_spectrum_numeric_dispersive(plan, mat, sl, theta, spec), "numeric integration")
-    for w in range(2):
-        if general:
-            _check(_lib.biref_spectrum_numeric_dispersive_polarized(plan, mat, sl, theta, w, C, P, xyz),
-                   "numeric integration")
-        else:
-            _lib.biref_spectrum_mix(spec.R if w else spec.T, w_in, mask, xyz)
-        mixed[idx + (w,)] = list(xyz)
+def _material_integrator(sp, m, n_samples, eopts):
+    o = _ffi.new("biref_integrator_options *")
+    _lib.biref_integrator_options_default(o)
+    o.method = m
+    if m == _lib.BIREF_METHOD_NUMERIC:
+        o.samples = n_samples
+    o.expansion = eopts[0]
+    itp = _ffi.new("biref_integrator **")
+    _call("integrator", _lib.biref_integrator_create, sp, o, itp)
+    return _ffi.gc(itp[0], _lib.biref_integrator_destroy)
+
+
+def _dispersive_one(it, mat, sl, theta, light, spec, mixed, orders, idx):
+    """One angle of a dispersive slab through the integrator (material.h): the numeric methods
+    sample n(lambda), the closed-form ones linearise each band's phases (or integrate exactly)."""
+    _check(_lib.biref_integrate_material_spectrum(it, mat, sl, theta, spec), "integration")
+    out = _ffi.new("biref_integration *")
+    _check(_lib.biref_integrate_material(it, mat, sl, theta, _lib.BIREF_SIDE_BOTH, light, out), "integration")
+    mixed[idx + (0,)] = list(out.T)
+    mixed[idx + (1,)] = list(out.R)
+    orders[idx + (0,)], orders[idx + (1,)] = out.order_used[0], out.order_used[1]
 
 
 def spectrum(eta_o=None, eta_e=None, axis=None, thickness_mm=None, thickness_um=None, thickness_nm=None,
@@ -470,9 +481,6 @@ def spectrum(eta_o=None, eta_e=None, axis=None, thickness_mm=None, thickness_um=
     if axis is None:
         raise ValueError("missing axis")
     mat = _material(material, eta_o, eta_e)
-    if mat and m in (_lib.BIREF_METHOD_ANALYTIC, _lib.BIREF_METHOD_EXPANSION):
-        raise ValueError(f"material: the {method} method does not take dispersion yet; use method numeric or "
-                         "ground-truth")
     if samples is not None and m != _lib.BIREF_METHOD_NUMERIC:
         raise ValueError(f"samples: only valid with method numeric (method is {method})")
     if (order is not None or tolerance is not None) and m != _lib.BIREF_METHOD_EXPANSION:
@@ -536,6 +544,14 @@ def spectrum(eta_o=None, eta_e=None, axis=None, thickness_mm=None, thickness_um=
         _lib.biref_light_set_analyzer(light, P)
         res = _ffi.new("biref_integration *")
     band = _material_band(mat, cfg.lambda_min_nm, cfg.lambda_max_nm) if mat else None
+    if mat:
+        it = _material_integrator(sp, m, n_samples, eopts)
+        light = _ffi.new("biref_light *")
+        if general:  # as the command line: the coherency and the analyzer (diag(mask) unless given)
+            _lib.biref_light_coherency(C, light)
+            _lib.biref_light_set_analyzer(light, P)
+        else:
+            _check(_lib.biref_light_sp(w_in, mask, light), "light")
     thetas = _np.asarray(theta_deg, dtype=float)
     spec = _ffi.new("biref_spectrum *")
     T_all = _np.empty(thetas.shape + (2, 2, 3))
@@ -547,7 +563,7 @@ def spectrum(eta_o=None, eta_e=None, axis=None, thickness_mm=None, thickness_um=
     orders = _np.full(thetas.shape + (2,), -1, dtype=int)
     for idx in _np.ndindex(thetas.shape):
         if mat:
-            _dispersive_one(plan, mat, sl, _theta_rad(thetas[idx]), general, C, P, w_in, mask, spec, xyz, mixed, idx)
+            _dispersive_one(it, mat, sl, _theta_rad(thetas[idx]), light, spec, mixed, orders, idx)
             T_all[idx] = _np.array(_ffi.unpack(_ffi.cast("double *", spec.T), 12)).reshape(2, 2, 3)
             R_all[idx] = _np.array(_ffi.unpack(_ffi.cast("double *", spec.R), 12)).reshape(2, 2, 3)
             continue

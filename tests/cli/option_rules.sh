@@ -89,4 +89,8 @@ done
 expect_error "--axis with a blank" slab --eta-o 1.6 --eta-e 1.5 --axis '0, 1,0' --thickness-um 3
 expect_error "--axis hexadecimal" slab --eta-o 1.6 --eta-e 1.5 --axis 0,0x1,0 --thickness-um 3
 expect_error "--sweep-delta-eps hexadecimal" accuracy --sweep-delta-eps 0x1
+for p in 'linear:0x10' 'linear: 10' 'linear:inf' 'linear:10 '; do
+  expect_error "--analyzer $p" spectrum "${slab[@]}" --thickness-um 3 --method numeric --analyzer "$p"
+  expect_error "--polarizer $p" spectrum "${slab[@]}" --thickness-um 3 --method numeric --polarizer "$p"
+done
 finish

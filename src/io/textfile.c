@@ -1,5 +1,5 @@
-/* Whole text files with a size limit (text_file.h). */
-#include "io/text_file.h"
+/* Whole text files with a size limit (textfile.h). */
+#include "io/textfile.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -42,8 +42,8 @@ static const char *read_all(FILE *f, size_t max_bytes, char **buf, size_t *cap, 
     }
 }
 
-biref_status biref_text_file_read(const char *path, size_t max_bytes, char **text, size_t *len, char *msg,
-                                  size_t msg_len)
+biref_status biref_read_text(const char *path, size_t max_bytes, char **text, size_t *len, char *msg,
+                        size_t msg_len)
 {
     *text = NULL;
     *len = 0;

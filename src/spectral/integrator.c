@@ -280,3 +280,7 @@ biref_status biref_integrate_hit(const biref_integrator *it, const biref_slab_hi
 }
 
 const biref_numeric_plan *biref_integrator_plan(const biref_integrator *it) { return it->plan; }
+
+const biref_spectral *biref_integrator_spectral(const biref_integrator *it) { return it->sp; }
+
+const biref_expansion_opts *biref_integrator_expansion_opts(const biref_integrator *it) { return &it->xopts; }

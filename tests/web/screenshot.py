@@ -3,15 +3,15 @@
 over a pipe (--remote-debugging-pipe: Python's standard library is enough, no npm).
 
 usage: screenshot.py WIDTH HEIGHT URL OUT.png [URL OUT.png ...] [--chromium PATH] [--timeout S]
-       screenshot.py WIDTH HEIGHT --errors URL TEXT [URL TEXT ...]
 
 Loads each URL in turn in one browser (so compiled shaders are reused), waits until the page
 sets document.title to "biref ready" (the frame is drawn) and captures the top-left
 WIDTH x HEIGHT pixels into OUT.png. Exit 1 with one line on stderr if the page reports an error,
 never gets ready, or Chromium cannot start.
 
-With --errors, each page must instead report an error: a title "biref error: ..." and the same
-message shown in the page (a visible element), both containing TEXT."""
+With --errors (usage: screenshot.py WIDTH HEIGHT --errors URL TEXT [URL TEXT ...]), each page
+must instead report an error: a title "biref error: ..." and the same message shown in the page
+(a visible element), both containing TEXT."""
 import argparse
 import base64
 import fcntl
@@ -75,17 +75,9 @@ def check_error_page(cdp, sess, url, title, text):
         raise RuntimeError(f"{url}: the error is not shown in the page (visible text: {shown!r})")
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("width", type=int)
-    ap.add_argument("height", type=int)
-    ap.add_argument("pages", nargs="+", metavar="URL OUT.png")
-    ap.add_argument("--chromium", default=shutil.which("chromium") or "/usr/bin/chromium")
-    ap.add_argument("--timeout", type=float, default=180)
-    ap.add_argument("--errors", action="store_true", help="pairs of URL and the expected error text")
-    a = ap.parse_args()
-    if len(a.pages) % 2:
-        ap.error("expected pairs of URL and OUT.png")
+def launch(binary, width, height):
+    """Starts Chromium headless with the DevTools pipe in a fresh profile; returns the process,
+    its Pipe and the profile directory (the caller removes it)."""
     profile = tempfile.mkdtemp(prefix="biref-chromium-")
     # Chromium reads commands from fd 3 and writes replies to fd 4. Our ends are moved above 10
     # first, so the dup2 calls in the child cannot overwrite one another.
@@ -101,12 +93,26 @@ def main():
         os.dup2(to_r, 3)
         os.dup2(from_w, 4)
 
-    proc = subprocess.Popen(chromium_args(a.chromium, profile, a.width, a.height), preexec_fn=child_fds,
+    proc = subprocess.Popen(chromium_args(binary, profile, width, height), preexec_fn=child_fds,
                             close_fds=False, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                             stderr=open(os.environ.get("BIREF_CHROMIUM_LOG", os.devnull), "w"))
     os.close(to_r)
     os.close(from_w)
-    cdp = Pipe(proc, to_w, from_r)
+    return proc, Pipe(proc, to_w, from_r), profile
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("width", type=int)
+    ap.add_argument("height", type=int)
+    ap.add_argument("pages", nargs="+", metavar="URL OUT.png")
+    ap.add_argument("--chromium", default=shutil.which("chromium") or "/usr/bin/chromium")
+    ap.add_argument("--timeout", type=float, default=180)
+    ap.add_argument("--errors", action="store_true", help="pairs of URL and the expected error text")
+    a = ap.parse_args()
+    if len(a.pages) % 2:
+        ap.error("expected pairs of URL and OUT.png")
+    proc, cdp, profile = launch(a.chromium, a.width, a.height)
     try:
         target = cdp.call("Target.createTarget", {"url": "about:blank"})["targetId"]
         sess = cdp.call("Target.attachToTarget", {"targetId": target, "flatten": True})["sessionId"]

@@ -129,6 +129,17 @@ int pe_ext_nodes_field(pe_ext *e, biref_pe_field *f, double h)
         cli_error(CMD, "%s: %s", e->nodes_path, msg);
         return st == BIREF_ERR_NOMEM ? CLI_EXIT_FAIL : CLI_EXIT_USAGE;
     }
+    if (e->boundary_path && biref_pe_mesh_nodes_inside(e->mesh, NULL) == 0) {
+        biref_pe_mesh_info info;
+        double b[4];
+        biref_pe_mesh_get_info(e->mesh, &info);
+        biref_pe_mesh_bounds(e->mesh, b);
+        const double u = e->fmt.length_m;
+        cli_error(CMD, "%s: the boundary encloses none of the %zu nodes (x %g..%g, y %g..%g in the nodes' unit): another "
+                       "length unit, or another part's outline?",
+                  e->boundary_path, info.nodes, b[0] / u, b[1] / u, b[2] / u, b[3] / u);
+        return CLI_EXIT_USAGE;
+    }
     if (biref_pe_field_nodes(f, e->mesh, h, msg, sizeof msg) != BIREF_OK) {
         cli_error(CMD, "nodes: %s", msg);
         return CLI_EXIT_USAGE;

@@ -200,8 +200,19 @@ static const cli_opt OPTS[] = {
                "node table with a header (finite-element nodes, scattered; Delaunay\n"
                "triangulation, linear in each triangle); other columns are ignored;\n"
                "comma, semicolon or blank separated; repeated nodes are averaged"),
+    CLI_CUSTOM("fea", "FILE", OPT_PE_FEA,
+               "finite-element results with their elements: CalculiX .frd (ASCII),\n"
+               "VTK .vtu/.vtp (XML, any encoding) or legacy .vtk; plane elements (linear\n"
+               "and quadratic triangles and quads), interpolated inside each element;\n"
+               "outside every element there is no material (holes need no boundary)"),
+    CLI_CUSTOM("fea-format", "frd|vtu|vtk", OPT_PE_FEA_FORMAT, "the format of --fea (default: from the extension)"),
+    CLI_CUSTOM("fea-stress", "NAME", OPT_PE_FEA_STRESS,
+               "VTK: the point-data stress tensor (3, 6 or 9 components; default the\n"
+               "first of stress, S, sigma, then scalars stress_xx/_yy/_xy, sxx/syy/sxy,\n"
+               "S11/S22/S12); .frd: components SXX, SYY, SXY unless --columns"),
     CLI_CUSTOM("columns", "x=X,y=Y,sxx=S11,syy=S22,txy=S12", OPT_PE_COLUMNS,
-               "column names of the nodes (default x, y, sxx, syy, txy)"),
+               "column names of the nodes (default x, y, sxx, syy, txy); with --fea\n"
+               "the three stress components' names (arrays, or .frd components)"),
     CLI_CUSTOM("length-unit", "mm|m", OPT_PE_LENGTH_UNIT, "unit of the nodes' coordinates (default mm)"),
     CLI_CUSTOM("stress-unit", "MPa|Pa", OPT_PE_STRESS_UNIT, "unit of the nodes' stresses (default MPa)"),
     CLI_CUSTOM("boundary", "FILE", OPT_PE_BOUNDARY,
@@ -281,7 +292,8 @@ static const cli_opt OPTS[] = {
 
 const cli_command_spec CLI_PHOTOELASTIC = {
     "photoelastic",
-    "usage: biref photoelastic (--preset disk|hole|beam | --stress-grid FILE | --stress-nodes FILE) [OPTIONS]\n"
+    "usage: biref photoelastic (--preset disk|hole|beam | --stress-grid FILE | --stress-nodes FILE | --fea FILE)\n"
+    "                          [OPTIONS]\n"
     "       biref photoelastic demodulate IMAGES... -o DIR --zero-order PX,PY (see its --help)\n\n"
     "A plate under plane stress seen in a polariscope (at normal incidence unless --tilt-deg):\n"
     "isochromatic fringes (and isoclinics in a plane polariscope) from the stress-optic law\n"
@@ -326,9 +338,9 @@ static int check(pe_args *a, const cli_parsed *p, char **argv)
 {
     const int mono = a->light == BIREF_PE_MONO;
     if (pe_ext_check(&a->ext, a->kind >= 0, mono, a->out != NULL, a->tilt_deg > 0)) return -1;
-    if (a->ext.nodes_path) a->kind = BIREF_PE_NODES;
+    if (a->ext.nodes_path || a->ext.fea_path) a->kind = BIREF_PE_NODES;
     if (p->n_args > 0) return cli_error(CMD, "unexpected argument '%s'", argv[p->first_arg]), -1;
-    if (a->kind < 0) return cli_error(CMD, "missing --preset disk|hole|beam, --stress-grid FILE or --stress-nodes FILE"), -1;
+    if (a->kind < 0) return cli_error(CMD, "missing --preset disk|hole|beam, --stress-grid FILE, --stress-nodes FILE or --fea FILE"), -1;
     for (int i = 0; i < PE_N_GEO; i++)
         if (!isnan(a->geo[i]) && !(GEO[i].presets & (1u << a->kind)))
             return cli_error(CMD, "%s does not apply to %s", GEO[i].name,

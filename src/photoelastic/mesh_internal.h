@@ -50,7 +50,8 @@ struct biref_pe_mesh {
     size_t nel;
     pe_elem *el;
     int delaunay;  /* elements are qhull's triangles of a node table */
-    double box[4]; /* xmin, xmax, ymin, ymax of the elements */
+    double box[4];   /* xmin, xmax, ymin, ymax of the buckets (curved elements padded) */
+    double nodes_box[4]; /* of the elements' nodes: the part's extent */
     /* Element buckets on a gx x gy grid over box (CSR). */
     int gx, gy;
     double cw, ch;

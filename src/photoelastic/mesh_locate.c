@@ -46,13 +46,19 @@ static void grid_geometry(biref_pe_mesh *m)
 
 biref_status pe_mesh_buckets(biref_pe_mesh *m, char *msg, size_t msg_len)
 {
-    m->box[0] = m->box[2] = INFINITY;
-    m->box[1] = m->box[3] = -INFINITY;
+    m->box[0] = m->box[2] = m->nodes_box[0] = m->nodes_box[2] = INFINITY;
+    m->box[1] = m->box[3] = m->nodes_box[1] = m->nodes_box[3] = -INFINITY;
     for (size_t i = 0; i < m->nel; i++) {
         double b[4];
         element_box(m, &m->el[i], b);
         m->box[0] = fmin(m->box[0], b[0]), m->box[1] = fmax(m->box[1], b[1]);
         m->box[2] = fmin(m->box[2], b[2]), m->box[3] = fmax(m->box[3], b[3]);
+        const pe_elem *e = &m->el[i];
+        for (int k = 0; k < pe_element_node_count(e->type); k++) {
+            const double *p = m->xy + 2 * e->v[k];
+            m->nodes_box[0] = fmin(m->nodes_box[0], p[0]), m->nodes_box[1] = fmax(m->nodes_box[1], p[0]);
+            m->nodes_box[2] = fmin(m->nodes_box[2], p[1]), m->nodes_box[3] = fmax(m->nodes_box[3], p[1]);
+        }
     }
     grid_geometry(m);
     const size_t ncell = (size_t)m->gx * m->gy;
@@ -116,7 +122,7 @@ void biref_pe_mesh_get_info(const biref_pe_mesh *m, biref_pe_mesh_info *out)
 
 void biref_pe_mesh_bounds(const biref_pe_mesh *m, double b[4])
 {
-    memcpy(b, m->box, sizeof m->box);
+    memcpy(b, m->nodes_box, sizeof m->nodes_box);
 }
 
 size_t biref_pe_mesh_nodes_inside(const biref_pe_mesh *m, const double window[4])

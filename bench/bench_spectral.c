@@ -21,6 +21,8 @@
  *
  * --truncation measures accuracy instead of time: the expansion's adaptive orders against order
  * 8 on the same draws (docs/PHYSICS.md section 5). */
+/* Times the methods one by one and the expansion's tail: unstable API. */
+#define BIREF_EXPERIMENTAL_API
 #include <complex.h>
 #include <math.h>
 #include <stdio.h>

@@ -88,11 +88,15 @@ int cli_slab_opts_handle(const char *cmd, cli_slab_opts *o, int code, const char
     double v;
     switch (code) {
     case OPT_ETA_O:
-        o->have_eta_o = 1;
-        return cli_parse_double(cmd, "--eta-o", arg, &o->slab.eta_o) ? -1 : 1;
-    case OPT_ETA_E:
-        o->have_eta_e = 1;
-        return cli_parse_double(cmd, "--eta-e", arg, &o->slab.eta_e) ? -1 : 1;
+    case OPT_ETA_E: {
+        const int e = code == OPT_ETA_E;
+        const char *name = e ? "--eta-e" : "--eta-o";
+        if (o->index_source[e])
+            return cli_error(cmd, "%s: %s already given by %s", name, e ? "n_e" : "n_o", o->index_source[e]), -1;
+        o->index_source[e] = name;
+        *(e ? &o->have_eta_e : &o->have_eta_o) = 1;
+        return cli_parse_double(cmd, name, arg, e ? &o->slab.eta_e : &o->slab.eta_o) ? -1 : 1;
+    }
     case OPT_ETA_I: return cli_parse_double(cmd, "--eta-i", arg, &o->slab.eta_i) ? -1 : 1;
     case OPT_AXIS:
         o->have_axis = 1;
@@ -114,14 +118,22 @@ int cli_slab_opts_handle(const char *cmd, cli_slab_opts *o, int code, const char
     case OPT_THETA_DEG:
         o->have_theta = 1;
         return cli_parse_double(cmd, "--theta-deg", arg, &o->theta_deg) ? -1 : 1;
-    default: return 0;
+    default: return cli_dispersion_handle(cmd, o, code, arg);
     }
+}
+
+void cli_slab_opts_free(cli_slab_opts *o)
+{
+    biref_material_destroy(o->owned_material);
+    o->owned_material = NULL;
+    o->material = NULL;
 }
 
 int cli_slab_opts_finish(const char *cmd, cli_slab_opts *o)
 {
-    if (!o->have_eta_o) return cli_error(cmd, "missing --eta-o"), -1;
-    if (!o->have_eta_e) return cli_error(cmd, "missing --eta-e"), -1;
+    if (cli_dispersion_finish(cmd, o)) return -1;
+    if (!o->index_source[0]) return cli_error(cmd, "missing --eta-o (or --material)"), -1;
+    if (!o->index_source[1]) return cli_error(cmd, "missing --eta-e (or --material)"), -1;
     if (!o->have_axis) return cli_error(cmd, "missing --axis"), -1;
     if (!o->have_thickness) return cli_error(cmd, "missing --thickness-um (or --thickness-mm, --thickness-nm)"), -1;
     char msg[200];

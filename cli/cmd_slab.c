@@ -94,6 +94,8 @@ static void print_table(const char *title, const biref_jones *J, double P[2][2])
     }
 }
 
+static int run(const slab_args *a);
+
 int cmd_slab(int argc, char **argv)
 {
     slab_args a;
@@ -105,9 +107,18 @@ int cmd_slab(int argc, char **argv)
     if (r) return r > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
     if (p.n_args) return cli_error(CMD, "unexpected argument '%s'", argv[p.first_arg]), CLI_EXIT_USAGE;
     if (cli_slab_opts_finish(CMD, &a.so)) return CLI_EXIT_USAGE;
-    const cli_slab_opts so = a.so;
-    const double lambda = a.lambda;
-    const int json = a.json, tmm = a.tmm;
+    const int rc = run(&a);
+    cli_slab_opts_free(&a.so);
+    return rc;
+}
+
+static int run(const slab_args *a)
+{
+    const double lambda = a->lambda;
+    const int json = a->json, tmm = a->tmm;
+    /* A dispersive material: the slab of its indices at this wavelength (exact, both methods). */
+    cli_slab_opts so = a->so;
+    if (cli_slab_at(CMD, &a->so, lambda, &so.slab)) return CLI_EXIT_USAGE;
 
     double theta = so.theta_deg * M_PI / 180.0;
     biref_slab_state st;
@@ -132,6 +143,10 @@ int cmd_slab(int argc, char **argv)
         cJSON *root = cJSON_CreateObject();
         cJSON_AddStringToObject(root, "method", tmm ? "tmm" : "closed-form");
         cJSON *in = cJSON_AddObjectToObject(root, "input");
+        if (so.material)
+            cJSON_AddItemToObject(in, "material", json_dispersive_material(so.material, lambda, lambda));
+        else
+            cJSON_AddNullToObject(in, "material");
         cJSON_AddNumberToObject(in, "eta_o", so.slab.eta_o);
         cJSON_AddNumberToObject(in, "eta_e", so.slab.eta_e);
         cJSON_AddItemToObject(in, "axis", json_vec3(so.slab.axis));
@@ -155,6 +170,11 @@ int cmd_slab(int argc, char **argv)
         cJSON_AddBoolToObject(tr, "any", st.total_reflection);
         cJSON_AddItemToObject(root, "modes", modes_json(&st));
         return json_print_and_free(root) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
+    }
+    if (so.material) {
+        biref_material_info info;
+        biref_material_get_info(so.material, &info);
+        printf("material %s at %g nm: ", info.name, lambda);
     }
     printf("slab: eta_o %.6g, eta_e %.6g, axis (%.4f, %.4f, %.4f), d %.6g um, eta_i %.4g\n", so.slab.eta_o,
            so.slab.eta_e, so.slab.axis[0], so.slab.axis[1], so.slab.axis[2], so.slab.thickness_nm / 1e3,

@@ -196,6 +196,12 @@ static int check_args(spectrum_args *a)
     if ((a->have_order || a->have_tol) && a->method != BIREF_METHOD_EXPANSION)
         return cli_error(CMD, "%s: only valid with --method expansion", a->have_order ? "--order" : "--tolerance"), -1;
     if (a->have_order && a->have_tol) return cli_error(CMD, "--order and --tolerance exclude each other"), -1;
+    /* A dispersive material: the numeric methods sample n(λ); the closed forms do not yet. */
+    const char *disp = cli_slab_dispersion_option(&a->so);
+    if (disp && (a->method == BIREF_METHOD_ANALYTIC || a->method == BIREF_METHOD_EXPANSION))
+        return cli_error(CMD, "%s: the %s method does not take dispersion yet; use --method numeric or ground-truth",
+                         disp, biref_method_name(a->method)),
+               -1;
     if ((a->general_in || a->general_an) && a->method == BIREF_METHOD_ANALYTIC)
         return cli_error(CMD,
                          "%s needs --method numeric, ground-truth or expansion (the paper's method handles s/p only)",
@@ -243,6 +249,26 @@ static void make_light(const spectrum_args *a, biref_light *l)
     biref_light_set_analyzer(l, (const double complex(*)[2])a->P_an);
 }
 
+/* The numeric integration of a dispersive slab, n(λ) at every sample (material.h). */
+static int compute_dispersive(const spectrum_args *a, const biref_integrator *it, const biref_light *light,
+                              spectrum_result *res)
+{
+    if (cli_slab_check_band(CMD, &a->so, a->cfg.lambda_min_nm, a->cfg.lambda_max_nm)) return CLI_EXIT_USAGE;
+    const double theta = a->so.theta_deg * M_PI / 180.0;
+    biref_integration mixed;
+    biref_status s = biref_integrate_material_spectrum(it, a->so.material, &a->so.slab, theta, &res->spec);
+    if (s == BIREF_OK)
+        s = biref_integrate_material(it, a->so.material, &a->so.slab, theta, BIREF_SIDE_BOTH, light, &mixed);
+    if (s == BIREF_ERR_ILLCOND) return cli_error(CMD, "numerical failure (non-finite result)"), CLI_EXIT_FAIL;
+    if (s != BIREF_OK) return cli_error(CMD, "numeric integration: %s", biref_status_string(s)), CLI_EXIT_FAIL;
+    memcpy(res->T_xyz, mixed.T, sizeof res->T_xyz);
+    memcpy(res->R_xyz, mixed.R, sizeof res->R_xyz);
+    memcpy(res->order_used, mixed.order_used, sizeof res->order_used);
+    biref_xyz_to_srgb(res->T_xyz, res->T_rgb);
+    biref_xyz_to_srgb(res->R_xyz, res->R_rgb);
+    return CLI_EXIT_OK;
+}
+
 /* The integration. Returns a CLI exit code (one error line printed unless OK). */
 static int compute(const spectrum_args *a, spectrum_result *res)
 {
@@ -251,7 +277,8 @@ static int compute(const spectrum_args *a, spectrum_result *res)
                      : a->method == BIREF_METHOD_GROUND_TRUTH ? BIREF_GROUND_TRUTH_SAMPLES
                                                               : 0;
     const double theta = a->so.theta_deg * M_PI / 180.0;
-    biref_status s = biref_slab_prepare(&a->so.slab, theta, &res->st);
+    /* A dispersive slab is prepared per sample (compute_dispersive); st stays unused. */
+    biref_status s = a->so.material ? BIREF_OK : biref_slab_prepare(&a->so.slab, theta, &res->st);
     if (s != BIREF_OK) return cli_error(CMD, "%s", biref_status_string(s)), CLI_EXIT_FAIL;
 
     biref_spectral *sp = NULL;
@@ -259,6 +286,7 @@ static int compute(const spectrum_args *a, spectrum_result *res)
     s = biref_spectral_create(&a->cfg, &sp, why, sizeof why);
     if (s == BIREF_ERR_INVALID) return cli_error(CMD, "--range-nm: %s", why), CLI_EXIT_USAGE;
     if (s != BIREF_OK) return cli_error(CMD, "spectral context: %s", why), CLI_EXIT_FAIL;
+
     biref_integrator_options io;
     biref_integrator_options_default(&io);
     io.method = a->method;
@@ -272,6 +300,12 @@ static int compute(const spectrum_args *a, spectrum_result *res)
     }
     biref_light light;
     make_light(a, &light);
+    if (a->so.material) {
+        const int rc = compute_dispersive(a, it, &light, res);
+        biref_integrator_destroy(it);
+        biref_spectral_destroy(sp);
+        return rc;
+    }
     biref_integration mixed;
     s = biref_integrate_spectrum(it, &res->st, &res->spec);
     biref_status sm = s == BIREF_OK ? biref_integrate(it, &res->st, BIREF_SIDE_BOTH, &light, &mixed) : s;
@@ -311,13 +345,23 @@ static int print_json(const spectrum_args *a, const spectrum_result *res)
     double range[2] = {a->cfg.lambda_min_nm, a->cfg.lambda_max_nm};
     cJSON_AddItemToObject(root, "range_nm", cJSON_CreateDoubleArray(range, 2));
     cJSON *in = cJSON_AddObjectToObject(root, "input");
-    cJSON_AddNumberToObject(in, "eta_o", slab->eta_o);
-    cJSON_AddNumberToObject(in, "eta_e", slab->eta_e);
+    if (a->so.material) {
+        cJSON_AddItemToObject(in, "material", json_dispersive_material(a->so.material, range[0], range[1]));
+        cJSON_AddNullToObject(in, "eta_o"); /* n(λ), sampled */
+        cJSON_AddNullToObject(in, "eta_e");
+    } else {
+        cJSON_AddNullToObject(in, "material");
+        cJSON_AddNumberToObject(in, "eta_o", slab->eta_o);
+        cJSON_AddNumberToObject(in, "eta_e", slab->eta_e);
+    }
     cJSON_AddItemToObject(in, "axis", json_vec3(slab->axis));
     cJSON_AddNumberToObject(in, "thickness_nm", slab->thickness_nm);
     cJSON_AddNumberToObject(in, "theta_deg", a->so.theta_deg);
     cJSON_AddNumberToObject(in, "eta_i", slab->eta_i);
-    cJSON_AddBoolToObject(root, "total_reflection", res->st.total_reflection);
+    if (a->so.material)
+        cJSON_AddNullToObject(root, "total_reflection"); /* per sample */
+    else
+        cJSON_AddBoolToObject(root, "total_reflection", res->st.total_reflection);
     cJSON_AddItemToObject(root, "T", xyz_pairs_json(res->spec.T));
     cJSON_AddItemToObject(root, "R", xyz_pairs_json(res->spec.R));
     cJSON *mx = cJSON_AddObjectToObject(root, "mixed");
@@ -350,9 +394,18 @@ static int print_text(const spectrum_args *a, const spectrum_result *res)
     names(a, polbuf, &pol_name, &an_name);
     const biref_slab *slab = &a->so.slab;
     const char *cmf_name = biref_cmf_kind_name(a->cfg.cmf);
-    printf("slab: eta_o %.6g, eta_e %.6g, axis (%.4f, %.4f, %.4f), d %.6g um, eta_i %.4g, theta %.4g deg%s\n",
-           slab->eta_o, slab->eta_e, slab->axis[0], slab->axis[1], slab->axis[2], slab->thickness_nm / 1e3,
-           slab->eta_i, a->so.theta_deg, res->st.total_reflection ? "  (total reflection inside)" : "");
+    if (a->so.material) {
+        biref_material_info info;
+        biref_material_get_info(a->so.material, &info);
+        printf("slab: material %s (n_o, n_e at every sample), axis (%.4f, %.4f, %.4f), d %.6g um, eta_i %.4g, "
+               "theta %.4g deg\n",
+               info.name, slab->axis[0], slab->axis[1], slab->axis[2], slab->thickness_nm / 1e3, slab->eta_i,
+               a->so.theta_deg);
+    } else {
+        printf("slab: eta_o %.6g, eta_e %.6g, axis (%.4f, %.4f, %.4f), d %.6g um, eta_i %.4g, theta %.4g deg%s\n",
+               slab->eta_o, slab->eta_e, slab->axis[0], slab->axis[1], slab->axis[2], slab->thickness_nm / 1e3,
+               slab->eta_i, a->so.theta_deg, res->st.total_reflection ? "  (total reflection inside)" : "");
+    }
     if (res->n_samples)
         printf("method %s (%d samples), cmf %s, band %g-%g nm\n\n", biref_method_name(a->method), res->n_samples,
                cmf_name, a->cfg.lambda_min_nm, a->cfg.lambda_max_nm);
@@ -397,7 +450,8 @@ int cmd_spectrum(int argc, char **argv)
     const int p = parse(argc, argv, &a);
     if (p) return p > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
     spectrum_result res;
-    const int rc = compute(&a, &res);
-    if (rc != CLI_EXIT_OK) return rc;
-    return a.json ? print_json(&a, &res) : print_text(&a, &res);
+    int rc = compute(&a, &res);
+    if (rc == CLI_EXIT_OK) rc = a.json ? print_json(&a, &res) : print_text(&a, &res);
+    cli_slab_opts_free(&a.so);
+    return rc;
 }

@@ -14,8 +14,9 @@ int cmd_bench(int argc, char **argv);
 int cmd_figure(int argc, char **argv);
 int cmd_photoelastic(int argc, char **argv);
 int cmd_gl_data(int argc, char **argv);
+int cmd_material(int argc, char **argv);
 
 extern const cli_command_spec CLI_SLAB, CLI_SPECTRUM, CLI_ACCURACY, CLI_RENDER, CLI_DIFF, CLI_BENCH, CLI_FIGURE,
-    CLI_PHOTOELASTIC, CLI_PHOTOELASTIC_DEMODULATE, CLI_GL_DATA;
+    CLI_PHOTOELASTIC, CLI_PHOTOELASTIC_DEMODULATE, CLI_GL_DATA, CLI_MATERIAL;
 
 #endif

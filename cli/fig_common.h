@@ -7,7 +7,12 @@
 #include <math.h>
 #include <stddef.h>
 
+/* The figures compare the methods one by one (numeric plans, biref_spectrum_*): unstable API. */
+#ifndef BIREF_EXPERIMENTAL_API
+#define BIREF_EXPERIMENTAL_API
+#endif
 #include "biref/biref.h"
+#include "biref/experimental.h"
 #include "outfile.h"
 
 #define FIG_CMD "figure"

@@ -1,5 +1,6 @@
 #include "json_out.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -51,4 +52,22 @@ int json_print_and_free(cJSON *root)
     puts(text);
     free(text);
     return 0;
+}
+
+cJSON *json_dispersive_material(const biref_material *m, double lo_nm, double hi_nm)
+{
+    biref_material_info info;
+    biref_material_get_info(m, &info);
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "name", info.name);
+    cJSON_AddStringToObject(o, "source", info.source);
+    if (isfinite(info.range_nm[1]))
+        cJSON_AddItemToObject(o, "range_nm", cJSON_CreateDoubleArray(info.range_nm, 2));
+    else
+        cJSON_AddNullToObject(o, "range_nm");
+    double ex[2][2];
+    const int n = biref_material_extrapolated(m, lo_nm, hi_nm, ex);
+    cJSON *arr = cJSON_AddArrayToObject(o, "extrapolated_nm");
+    for (int i = 0; i < n; i++) cJSON_AddItemToArray(arr, cJSON_CreateDoubleArray(ex[i], 2));
+    return o;
 }

@@ -12,6 +12,8 @@ static const struct {
     const cli_command_spec *spec;
 } commands[] = {
     {"slab", cmd_slab, "Jones matrices and power fractions of one slab at one wavelength", &CLI_SLAB},
+    {"material", cmd_material, "dispersive materials: the named list, indices and group indices at a wavelength",
+     &CLI_MATERIAL},
     {"spectrum", cmd_spectrum, "colour (band integrals) of one slab: analytic, numeric or ground truth", &CLI_SPECTRUM},
     {"accuracy", cmd_accuracy, "accuracy study: analytic vs ground truth (docs/ACCURACY.md)", &CLI_ACCURACY},
     {"render", cmd_render, "render a scene file to PNG", &CLI_RENDER},

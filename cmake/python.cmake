@@ -12,7 +12,7 @@ file(GLOB BIREF_PUBLIC_HEADERS CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/inc
 add_custom_command(
   OUTPUT ${BIREF_CDEF}
   COMMAND ${CMAKE_C_COMPILER} -E -P -nostdinc -I${BIREF_CDEF_STUBS} -I${CMAKE_CURRENT_SOURCE_DIR}/include
-          -DBIREF_API= ${CMAKE_CURRENT_SOURCE_DIR}/include/biref/biref.h -o ${BIREF_CDEF}
+          -DBIREF_API= -DBIREF_EXPERIMENTAL_API ${CMAKE_CURRENT_SOURCE_DIR}/include/biref/biref.h -o ${BIREF_CDEF}
   DEPENDS ${BIREF_PUBLIC_HEADERS}
   COMMENT "Declarations for the Python bindings")
 add_custom_target(biref_python_cdef ALL DEPENDS ${BIREF_CDEF})

@@ -34,7 +34,7 @@ static void random_slab(test_rng *rng, int k, biref_slab *s, double *theta)
 /* Eligible exactly when nothing is evanescent or complex and the slab is not in the coherent
  * regime; biref_coherent_real_paths agrees with biref_coherent_plan; the flip does not change
  * the answer. */
-static void test_eligibility(void)
+static void test_packet_eligible_unless_total_reflection_or_coherent_regime(void)
 {
     biref_spectral *sp = NULL;
     CHECK(biref_spectral_create(NULL, &sp, NULL, 0) == BIREF_OK);
@@ -329,7 +329,8 @@ int main(int argc, char **argv)
 {
     quick = getenv("BIREF_TEST_QUICK") != NULL;
     static const test_case cases[] = {
-        {"eligibility", test_eligibility},
+        {"packet_eligible_unless_total_reflection_or_coherent_regime",
+         test_packet_eligible_unless_total_reflection_or_coherent_regime},
         {"kernels_vs_scalar_worker", test_kernels_vs_scalar},
         {"hit_kernels_vs_scalar_set_up", test_hit_kernels_vs_scalar},
         {"prefiltered_hit_kernels_vs_scalar", prefiltered_hit_kernels_vs_scalar},

@@ -43,7 +43,7 @@ static void wyman_vs_table(double shift, double err[3], double at[3])
     }
 }
 
-static void test_table_layout_and_interpolation(void)
+static void test_cie1931_table_nodes_and_interpolation_between_them(void)
 {
     CHECK(biref_cie1931_rows == 401);
     for (int i = 0; i < biref_cie1931_rows; i++) CHECK(biref_cie1931_table[i][0] == 380.0 + i);
@@ -88,7 +88,7 @@ static void test_table_layout_and_interpolation(void)
     CHECK_NEAR(v[2], biref_cie1931_table[0][3], 1e-18);
 }
 
-static void test_wyman(void)
+static void test_wyman2013_fit_matches_hand_values_and_cie1931(void)
 {
     /* Hand-evaluated WSS13 values: at each lobe's mean only that lobe is
      * exp(0) = 1; e.g. ȳ(568.8) = 0.821 + 0.286·exp(-½(37.9/31.1)²). */
@@ -120,7 +120,7 @@ static void test_wyman(void)
     }
 }
 
-static void test_band_integrals(void)
+static void test_band_integrals_equal_brute_force_sums(void)
 {
     const biref_cmf_kind kinds[2] = {BIREF_CMF_CIE1931, BIREF_CMF_WYMAN2013};
     const double ranges[][2] = {{380.0, 700.0}, {380.0, 780.0}, {401.37, 689.91}, {300.0, 900.0}};
@@ -155,7 +155,7 @@ static void test_band_integrals(void)
     CHECK(biref_cmf_band_integrals(BIREF_CMF_CIE1931, 380.0, 700.0, NULL, NULL, 0) == BIREF_ERR_INVALID);
 }
 
-static void test_band_normalisation(void)
+static void test_band_normalised_equal_energy_white_is_one(void)
 {
     const biref_cmf_kind kinds[2] = {BIREF_CMF_CIE1931, BIREF_CMF_WYMAN2013};
     const double ranges[][2] = {{BIREF_CMF_DEFAULT_LMIN_NM, BIREF_CMF_DEFAULT_LMAX_NM}, {400.0, 720.0}};
@@ -195,7 +195,7 @@ static void test_band_normalisation(void)
     CHECK(biref_cmf_band_init(NULL, BIREF_CMF_CIE1931, 380.0, 700.0, NULL, 0) == BIREF_ERR_INVALID);
 }
 
-static void test_names(void)
+static void test_cmf_names_parse_exactly_and_unknown_names_are_refused(void)
 {
     biref_cmf_kind k = (biref_cmf_kind)99;
     CHECK(biref_cmf_kind_from_name("cie1931", &k) == BIREF_OK && k == BIREF_CMF_CIE1931);
@@ -213,11 +213,12 @@ static void test_names(void)
 int main(int argc, char **argv)
 {
     static const test_case cases[] = {
-        {"table_layout_and_interpolation", test_table_layout_and_interpolation},
-        {"wyman", test_wyman},
-        {"band_integrals", test_band_integrals},
-        {"band_normalisation", test_band_normalisation},
-        {"names", test_names},
+        {"cie1931_table_nodes_and_interpolation_between_them", test_cie1931_table_nodes_and_interpolation_between_them},
+        {"wyman2013_fit_matches_hand_values_and_cie1931", test_wyman2013_fit_matches_hand_values_and_cie1931},
+        {"band_integrals_equal_brute_force_sums", test_band_integrals_equal_brute_force_sums},
+        {"band_normalised_equal_energy_white_is_one", test_band_normalised_equal_energy_white_is_one},
+        {"cmf_names_parse_exactly_and_unknown_names_are_refused",
+         test_cmf_names_parse_exactly_and_unknown_names_are_refused},
     };
     return test_run_cases("test_cmf", cases, TEST_COUNT(cases), argc, argv);
 }

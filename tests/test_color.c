@@ -95,7 +95,7 @@ static void ref_bradford(const double src[3], const double dst[3], double m[3][3
 
 /* ---- tests --------------------------------------------------------------- */
 
-static void test_sharma(void)
+static void test_ciede2000_matches_sharma_2005_test_data(void)
 {
     FILE *f = fopen("data/ciede2000_sharma2005.csv", "r");
     CHECK(f != NULL);
@@ -126,7 +126,7 @@ static void test_sharma(void)
     printf("Sharma 2005: %d pairs, max |lcms2 - table| %.3g, max |lcms2 - reference| %.3g\n", n, max_err, max_ref);
 }
 
-static void test_ciede2000_random(void)
+static void test_ciede2000_matches_reference_on_random_pairs(void)
 {
     test_rng rng = {0x9e3779b97f4a7c15ULL};
     double max_diff = 0.0;
@@ -161,7 +161,7 @@ static void test_ciede2000_random(void)
     CHECK(biref_ciede2000(a, a) == 0.0);
 }
 
-static void test_lab(void)
+static void test_cielab_of_white_and_grey_known_values(void)
 {
     const double e[3] = {1.0, 1.0, 1.0}, d65[3] = {0.3127 / 0.3290, 1.0, (1.0 - 0.3127 - 0.3290) / 0.3290};
     double lab[3];
@@ -206,7 +206,7 @@ static void test_lab(void)
     CHECK(biref_delta_e00_xyz(x1, x2) > 0.5); /* a visible difference */
 }
 
-static void test_srgb_matrices(void)
+static void test_srgb_matrices_equal_their_derivation(void)
 {
     double m[3][3], minv[3][3];
     biref_srgb_derive_matrices(m, minv);
@@ -275,7 +275,7 @@ static void test_srgb_matrices(void)
 static double iec_encode(double v) { return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055; }
 static double iec_decode(double v) { return v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4); }
 
-static void test_transfer(void)
+static void test_srgb_transfer_curve_values_and_continuity(void)
 {
     CHECK(biref_srgb_encode(0.0) == 0.0);
     CHECK(biref_srgb_decode(0.0) == 0.0);
@@ -326,7 +326,7 @@ static void test_transfer(void)
            max_iec);
 }
 
-static void test_srgb8(void)
+static void test_srgb8_values_round_trip_through_xyz(void)
 {
     const unsigned char white[3] = {255, 255, 255}, black[3] = {0, 0, 0}, mid[3] = {128, 128, 128};
     double xyz[3], lin[3];
@@ -365,12 +365,12 @@ static void test_srgb8(void)
 int main(int argc, char **argv)
 {
     static const test_case cases[] = {
-        {"sharma", test_sharma},
-        {"ciede2000_random", test_ciede2000_random},
-        {"lab", test_lab},
-        {"srgb_matrices", test_srgb_matrices},
-        {"transfer", test_transfer},
-        {"srgb8", test_srgb8},
+        {"ciede2000_matches_sharma_2005_test_data", test_ciede2000_matches_sharma_2005_test_data},
+        {"ciede2000_matches_reference_on_random_pairs", test_ciede2000_matches_reference_on_random_pairs},
+        {"cielab_of_white_and_grey_known_values", test_cielab_of_white_and_grey_known_values},
+        {"srgb_matrices_equal_their_derivation", test_srgb_matrices_equal_their_derivation},
+        {"srgb_transfer_curve_values_and_continuity", test_srgb_transfer_curve_values_and_continuity},
+        {"srgb8_values_round_trip_through_xyz", test_srgb8_values_round_trip_through_xyz},
     };
     return test_run_cases("test_color", cases, TEST_COUNT(cases), argc, argv);
 }

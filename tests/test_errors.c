@@ -18,7 +18,7 @@ static int one_line(const char *msg, size_t cap)
     return n > 0 && n < cap && !strchr(msg, '\n');
 }
 
-static void test_spectral_create(void)
+static void test_spectral_create_refuses_bad_ranges_in_one_line(void)
 {
     char msg[BIREF_MSG_SIZE];
     biref_spectral *sp = NULL;
@@ -48,7 +48,7 @@ static void test_spectral_create(void)
     biref_spectral_destroy(sp);
 }
 
-static void test_integrator_and_plan(void)
+static void test_integrator_and_plan_refuse_bad_options_in_one_line(void)
 {
     char msg[BIREF_MSG_SIZE];
     biref_spectral *sp = NULL;
@@ -77,7 +77,7 @@ static void test_integrator_and_plan(void)
     biref_spectral_destroy(sp);
 }
 
-static void test_cmf_band(void)
+static void test_cmf_band_refuses_empty_or_unknown_bands_in_one_line(void)
 {
     char msg[BIREF_MSG_SIZE];
     biref_cmf_band band;
@@ -91,7 +91,7 @@ static void test_cmf_band(void)
     CHECK(one_line(msg, sizeof msg) && strstr(msg, "zero"));
 }
 
-static void test_photoelastic_render(void)
+static void test_photoelastic_render_refuses_bad_setups_in_one_line(void)
 {
     char msg[BIREF_MSG_SIZE];
     biref_pe_setup s;
@@ -129,7 +129,7 @@ static void test_photoelastic_render(void)
 }
 
 /* Each thread's buffer gets its own call's reason, whatever the others do meanwhile. */
-static void test_messages_per_call(void)
+static void test_messages_belong_to_their_call_across_threads(void)
 {
     enum { N = 64 };
     static char msgs[N][BIREF_MSG_SIZE];
@@ -151,11 +151,12 @@ static void test_messages_per_call(void)
 int main(int argc, char **argv)
 {
     static const test_case cases[] = {
-        {"spectral_create", test_spectral_create},
-        {"integrator_and_plan", test_integrator_and_plan},
-        {"cmf_band", test_cmf_band},
-        {"photoelastic_render", test_photoelastic_render},
-        {"messages_per_call", test_messages_per_call},
+        {"spectral_create_refuses_bad_ranges_in_one_line", test_spectral_create_refuses_bad_ranges_in_one_line},
+        {"integrator_and_plan_refuse_bad_options_in_one_line", test_integrator_and_plan_refuse_bad_options_in_one_line},
+        {"cmf_band_refuses_empty_or_unknown_bands_in_one_line",
+         test_cmf_band_refuses_empty_or_unknown_bands_in_one_line},
+        {"photoelastic_render_refuses_bad_setups_in_one_line", test_photoelastic_render_refuses_bad_setups_in_one_line},
+        {"messages_belong_to_their_call_across_threads", test_messages_belong_to_their_call_across_threads},
     };
     return test_run_cases("test_errors", cases, TEST_COUNT(cases), argc, argv);
 }

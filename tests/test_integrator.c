@@ -55,7 +55,7 @@ static void options_are_checked(void)
     biref_integrator_destroy(NULL);
 }
 
-static void light_constructors(void)
+static void light_constructors_set_coherency_and_analyzer_and_refuse_bad_input(void)
 {
     biref_light l;
     const double w[2] = {0.3, 0.7}, none[2] = {1, 1}, s_only[2] = {1, 0};
@@ -149,7 +149,7 @@ static void integrate_equals_entry_points(void)
     biref_integrator_destroy(ex);
 }
 
-static void refusals(void)
+static void integrate_refuses_unsupported_light_and_bad_sides(void)
 {
     biref_slab_state st;
     CHECK(biref_slab_prepare(&SLAB, 0.3, &st) == BIREF_OK);
@@ -170,7 +170,7 @@ static void refusals(void)
 /* A lossless slab, unpolarized light, no analyzer: T + R = 1 in every band (exact for the
  * numeric and expansion methods), and an isotropic slab at normal incidence gives the Airy
  * average: T = 2n / (n^2 + 1) once the fringes average out over the band. */
-static void energy_and_isotropic_limit(void)
+static void energy_is_conserved_and_isotropic_slab_is_airy(void)
 {
     biref_light l;
     const double w[2] = {0.5, 0.5}, m[2] = {1, 1};
@@ -207,7 +207,7 @@ static int close3(const double a[3], const double b[3])
 }
 
 /* The batch call equals one call per state, with one light or a light per state. */
-static void batch_equals_single(void)
+static void batch_equals_single_calls_and_bad_stride_is_refused(void)
 {
     enum { N = 7 };
     biref_slab_state st[N];
@@ -233,7 +233,7 @@ static void batch_equals_single(void)
 }
 
 /* The polariscope through the integrator equals the photoelastic entry points of each method. */
-static void photoelastic_through_integrator(void)
+static void photoelastic_shading_through_integrator_equals_direct_paths(void)
 {
     biref_pe_setup s;
     memset(&s, 0, sizeof s);
@@ -279,12 +279,14 @@ int main(int argc, char **argv)
     if (biref_spectral_create(&cfg, &sp, NULL, 0) != BIREF_OK) return 1;
     static const test_case cases[] = {
         {"options_are_checked", options_are_checked},
-        {"light_constructors", light_constructors},
+        {"light_constructors_set_coherency_and_analyzer_and_refuse_bad_input",
+         light_constructors_set_coherency_and_analyzer_and_refuse_bad_input},
         {"integrate_equals_entry_points", integrate_equals_entry_points},
-        {"refusals", refusals},
-        {"energy_and_isotropic_limit", energy_and_isotropic_limit},
-        {"batch_equals_single", batch_equals_single},
-        {"photoelastic_through_integrator", photoelastic_through_integrator},
+        {"integrate_refuses_unsupported_light_and_bad_sides", integrate_refuses_unsupported_light_and_bad_sides},
+        {"energy_is_conserved_and_isotropic_slab_is_airy", energy_is_conserved_and_isotropic_slab_is_airy},
+        {"batch_equals_single_calls_and_bad_stride_is_refused", batch_equals_single_calls_and_bad_stride_is_refused},
+        {"photoelastic_shading_through_integrator_equals_direct_paths",
+         photoelastic_shading_through_integrator_equals_direct_paths},
     };
     int rc = test_run_cases("test_integrator", cases, TEST_COUNT(cases), argc, argv);
     biref_spectral_destroy(sp);

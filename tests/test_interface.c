@@ -92,7 +92,7 @@ static void energy_flux_across_random_interfaces(void)
 
 /* Total reflection: from a dense uniaxial medium into air beyond the critical angle the
  * reflected power equals the incident power (|r| weighted by flux). */
-static void total_reflection(void)
+static void total_internal_reflection_returns_all_flux(void)
 {
     double A[3] = {0.3, 0.5, 0.8};
     biref_medium u = biref_medium_uniaxial(1.6, 1.7, A), air = biref_medium_isotropic(1.0);
@@ -115,7 +115,7 @@ int main(int argc, char **argv)
         {"isotropic_isotropic_equals_fresnel_cross", isotropic_isotropic_equals_fresnel_cross},
         {"normal_incidence_in_our_basis", normal_incidence_in_our_basis},
         {"energy_flux_across_random_interfaces", energy_flux_across_random_interfaces},
-        {"total_reflection", total_reflection},
+        {"total_internal_reflection_returns_all_flux", total_internal_reflection_returns_all_flux},
     };
     return test_run_cases("test_interface", cases, TEST_COUNT(cases), argc, argv);
 }

@@ -104,7 +104,7 @@ static void modes_solve_the_wave_equation(void)
 
 /* K_max (eq. 6). Axis along x: an e wave in the YZ plane always sees eta_e, so K_max_e = eta_e;
  * the extracted eq. 6 (gamma^2 in place of alpha^2) gives eta_o here. */
-static void k_max(void)
+static void k_max_of_axis_in_the_surface_is_eta_e(void)
 {
     double A[3] = {1, 0, 0};
     biref_medium med = biref_medium_uniaxial(1.5, 1.7, A);
@@ -117,7 +117,7 @@ static void k_max(void)
 }
 
 /* Random axes: evanescence switches exactly at K_max_e. */
-static void random_axes(void)
+static void e_mode_turns_evanescent_at_k_max_for_random_axes(void)
 {
     for (int t = 0; t < 200; t++) {
         double A[3];
@@ -135,7 +135,7 @@ static void random_axes(void)
 
 /* Degenerate direction: axis along the normal at normal incidence. Both modes are
  * ordinary-like with index eta_o and the fields stay finite and orthogonal. */
-static void degenerate_direction(void)
+static void ray_along_the_axis_gives_orthogonal_modes_of_index_eta_o(void)
 {
     double A[3] = {0, 1, 0};
     biref_medium med = biref_medium_uniaxial(1.5, 1.6, A);
@@ -166,9 +166,10 @@ int main(int argc, char **argv)
 {
     static const test_case cases[] = {
         {"modes_solve_the_wave_equation", modes_solve_the_wave_equation},
-        {"k_max", k_max},
-        {"random_axes", random_axes},
-        {"degenerate_direction", degenerate_direction},
+        {"k_max_of_axis_in_the_surface_is_eta_e", k_max_of_axis_in_the_surface_is_eta_e},
+        {"e_mode_turns_evanescent_at_k_max_for_random_axes", e_mode_turns_evanescent_at_k_max_for_random_axes},
+        {"ray_along_the_axis_gives_orthogonal_modes_of_index_eta_o",
+         ray_along_the_axis_gives_orthogonal_modes_of_index_eta_o},
         {"invalid_media_are_rejected", invalid_media_are_rejected},
     };
     return test_run_cases("test_modes", cases, TEST_COUNT(cases), argc, argv);

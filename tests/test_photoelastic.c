@@ -51,7 +51,7 @@ static void traction(const biref_pe_stress *s, double nx, double ny, double t[2]
     t[1] = s->txy * nx + s->syy * ny;
 }
 
-static void material_presets(void)
+static void material_presets_are_valid_and_unknown_names_refused(void)
 {
     biref_pe_material m;
     CHECK(biref_pe_material_preset("polycarbonate", &m) == BIREF_OK);
@@ -740,7 +740,7 @@ int main(int argc, char **argv)
 {
     if (biref_spectral_create(NULL, &sp, NULL, 0) != BIREF_OK) return 1;
     static const test_case cases[] = {
-        {"material_presets", material_presets},
+        {"material_presets_are_valid_and_unknown_names_refused", material_presets_are_valid_and_unknown_names_refused},
         {"disk_centre_rim_and_resultant", disk_centre_rim_and_resultant},
         {"disk_is_in_equilibrium", disk_is_in_equilibrium},
         {"kirsch_hole_concentration_traction_and_equilibrium", kirsch_hole_concentration_traction_and_equilibrium},
@@ -761,7 +761,8 @@ int main(int argc, char **argv)
         {"oblique_near_normal_matches_fast_path", oblique_near_normal_matches_fast_path},
         {"oblique_uniaxial_stress_matches_closed_form", oblique_uniaxial_stress_matches_closed_form},
         {"field_builders_refuse_bad_geometry", field_builders_refuse_bad_geometry},
-        {"render_is_thread_independent_and_hole_shows_background", render_is_thread_independent_and_hole_shows_background},
+        {"render_is_thread_independent_and_hole_shows_background",
+         render_is_thread_independent_and_hole_shows_background},
     };
     int rc = test_run_cases("test_photoelastic", cases, TEST_COUNT(cases), argc, argv);
     biref_spectral_destroy(sp);

@@ -71,7 +71,7 @@ static image_stats stats_of(const float *xyz, size_t n)
 }
 
 /* Same image for 1 and 2 threads (bitwise), sane statistics, visible structure. */
-static void test_examples(void)
+static void test_examples_render_finite_plausible_and_thread_independent(void)
 {
     const char *scenes[] = {"examples/fig9a.json", "examples/fig9b.json", "examples/fig9c.json", "examples/default.json"};
     const int W = quick ? 24 : 48, H = quick ? 14 : 27;
@@ -124,7 +124,7 @@ static int white_scene(biref_scene *sc, const char *thickness, const char *pol, 
     return 0;
 }
 
-static void test_energy(void)
+static void test_unpolarized_white_scene_renders_t_plus_r_equal_to_one(void)
 {
     /* Only for unpolarized light: T (light from behind) and R (light from the front) belong to
      * two different incident waves, so for polarized light their sum is not conserved; for
@@ -148,7 +148,7 @@ static void test_energy(void)
 }
 
 /* Crossed polarizers: the background is dark; the paper's s/p model and a world-fixed pair. */
-static void test_crossed(void)
+static void test_crossed_polarizers_dark_background_and_lit_slab(void)
 {
     biref_scene sc;
     if (white_scene(&sc, "20", "{\"type\": \"sp\", \"s\": 0, \"p\": 1}", "{\"type\": \"s\"}")) return;
@@ -229,7 +229,7 @@ static void test_analytic_vs_ground_truth(void)
 }
 
 /* Grazing views and edge-on slabs must never produce NaN. */
-static void test_grazing(void)
+static void test_grazing_rays_render_finite(void)
 {
     biref_scene sc;
     if (white_scene(&sc, "1000", "{\"type\": \"unpolarized\"}", "{\"type\": \"none\"}")) return;
@@ -266,7 +266,7 @@ static int count_files(const char *dir)
     return n;
 }
 
-static void test_files(void)
+static void test_png_and_pfm_files_round_trip_and_failed_writes_leave_nothing(void)
 {
     char dir[] = "/tmp/biref_test_render_XXXXXX";
     if (!mkdtemp(dir)) {
@@ -316,12 +316,15 @@ int main(int argc, char **argv)
 {
     quick = getenv("BIREF_TEST_QUICK") != NULL;
     static const test_case cases[] = {
-        {"examples", test_examples},
-        {"energy", test_energy},
-        {"crossed", test_crossed},
+        {"examples_render_finite_plausible_and_thread_independent",
+         test_examples_render_finite_plausible_and_thread_independent},
+        {"unpolarized_white_scene_renders_t_plus_r_equal_to_one",
+         test_unpolarized_white_scene_renders_t_plus_r_equal_to_one},
+        {"crossed_polarizers_dark_background_and_lit_slab", test_crossed_polarizers_dark_background_and_lit_slab},
         {"analytic_vs_ground_truth", test_analytic_vs_ground_truth},
-        {"grazing", test_grazing},
-        {"files", test_files},
+        {"grazing_rays_render_finite", test_grazing_rays_render_finite},
+        {"png_and_pfm_files_round_trip_and_failed_writes_leave_nothing",
+         test_png_and_pfm_files_round_trip_and_failed_writes_leave_nothing},
     };
     return test_run_cases("test_render", cases, TEST_COUNT(cases), argc, argv);
 }

@@ -21,7 +21,7 @@ static const char *const BASE =
     "           \"polarization\": {\"type\": \"sp\", \"s\": 3, \"p\": 1}},"
     " \"filter\": {\"type\": \"p\"}}";
 
-static void test_good(void)
+static void test_valid_scenes_and_examples_parse_with_defaults_and_unit_vectors(void)
 {
     biref_scene sc;
     char msg[256] = "";
@@ -158,7 +158,7 @@ static void expect_bad(const char *path, const char *value, const char *field)
     free(text);
 }
 
-static void test_bad(void)
+static void test_invalid_fields_are_refused_naming_the_field(void)
 {
     expect_bad("camera", NULL, "camera");
     expect_bad("camera.position", NULL, "camera.position");
@@ -245,7 +245,7 @@ static void test_bad(void)
     expect_bad_text("duplicate key", buf, strlen(buf), "medium.eta");
 }
 
-static void test_validate(void)
+static void test_scenes_built_in_code_are_validated_like_parsed_ones(void)
 {
     /* Scenes built in code go through the same checks. */
     biref_scene sc;
@@ -270,9 +270,11 @@ static void test_validate(void)
 int main(int argc, char **argv)
 {
     static const test_case cases[] = {
-        {"good", test_good},
-        {"bad", test_bad},
-        {"validate", test_validate},
+        {"valid_scenes_and_examples_parse_with_defaults_and_unit_vectors",
+         test_valid_scenes_and_examples_parse_with_defaults_and_unit_vectors},
+        {"invalid_fields_are_refused_naming_the_field", test_invalid_fields_are_refused_naming_the_field},
+        {"scenes_built_in_code_are_validated_like_parsed_ones",
+         test_scenes_built_in_code_are_validated_like_parsed_ones},
     };
     return test_run_cases("test_scene", cases, TEST_COUNT(cases), argc, argv);
 }

@@ -24,7 +24,7 @@ static void random_slab(test_rng *r, biref_slab *s, double *theta, double *lambd
 
 /* Isotropic limit: eta_o = eta_e reproduces Airy for s and p, complex amplitudes,
  * for several axes (the o/e basis inside must not matter). */
-static void isotropic_limit(void)
+static void isotropic_slab_equals_airy_formula(void)
 {
     double axes[3][3] = {{0.3, 0.5, 0.8}, {1, 0, 0}, {0, 1, 0}};
     for (int a = 0; a < 3; a++)
@@ -45,7 +45,7 @@ static void isotropic_limit(void)
 }
 
 /* Frustrated total reflection: ambient denser than the (isotropic) slab, thin slab. */
-static void frustrated_total_reflection(void)
+static void frustrated_total_reflection_equals_airy_formula(void)
 {
     biref_slab s = {1.2, 1.2, {0.2, 0.9, 0.1}, 150.0, 1.5};
     double theta = 60 * M_PI / 180;
@@ -60,7 +60,7 @@ static void frustrated_total_reflection(void)
 }
 
 /* Energy: for every input polarisation sum T + sum R = 1 on random lossless slabs. */
-static void energy(void)
+static void lossless_random_slabs_have_t_plus_r_equal_to_one(void)
 {
     test_rng rng = {0x1234567ULL};
     for (int t = 0; t < 2000; t++) {
@@ -78,7 +78,7 @@ static void energy(void)
 
 /* Wave plate: normal incidence, axis in the surface plane. The eigenpolarisations are
  * along and across the axis and each is an Airy slab of index eta_e / eta_o. */
-static void wave_plate(void)
+static void normal_incidence_is_a_wave_plate_with_airy_eigenmodes(void)
 {
     for (int t = 0; t < 20; t++) {
         double phi = 0.3 + 0.13 * t, ne = 1.553, no = 1.544;
@@ -101,7 +101,7 @@ static void wave_plate(void)
 }
 
 /* Index-matched surround: retardance = 2 pi d (n_e - n_o) / lambda without ripple. */
-static void index_matched_surround(void)
+static void index_matched_surround_gives_the_retardance_phase(void)
 {
     double ne = 1.5005, no = 1.5, phi = 0.6;
     biref_slab s = {no, ne, {cos(phi), 0, sin(phi)}, 1e6, 1.50025};
@@ -117,7 +117,7 @@ static void index_matched_surround(void)
 }
 
 /* Axis along the normal at normal incidence: degenerate modes, isotropic with eta_o. */
-static void axis_along_the_normal(void)
+static void axis_along_the_normal_equals_isotropic_airy_formula(void)
 {
     biref_slab s = {1.6, 1.7, {0, 1, 0}, 3000, 1.0};
     biref_jones T, R;
@@ -131,7 +131,7 @@ static void axis_along_the_normal(void)
 
 /* Path expansion: the sum over paths of order <= n converges to the closed form, and the
  * extracted appendix B (subtracting the primary's path once per round trip) does not. */
-static void path_expansion(void)
+static void path_sum_to_order_8_equals_closed_form(void)
 {
     test_rng rng = {0xabcdefULL};
     int worse = 0, cases = 0;
@@ -205,7 +205,7 @@ static void flipping_a_prepared_state(void)
 }
 
 /* Path counts: 2^(2n+1) transmitted and 2^(2n) reflected paths of order n. */
-static void path_counts(void)
+static void path_counts_per_order_and_too_high_order_refused(void)
 {
     CHECK(biref_path_count(BIREF_TRANSMISSION, 0) == 2);
     CHECK(biref_path_count(BIREF_TRANSMISSION, 2) == 2 + 8 + 32);
@@ -214,7 +214,7 @@ static void path_counts(void)
 }
 
 /* A huge or tiny (but non-zero) finite axis means the same direction: no overflow. */
-static void huge_or_tiny_axis(void)
+static void axis_length_does_not_change_the_result(void)
 {
     biref_slab a = {1.5, 1.6, {1, 0, 1}, 5000, 1.0}, b = a, c = a;
     b.axis[0] = b.axis[2] = 1e300;
@@ -231,7 +231,7 @@ static void huge_or_tiny_axis(void)
 }
 
 /* Bad input. */
-static void bad_input(void)
+static void invalid_slab_angle_or_wavelength_is_refused(void)
 {
     biref_slab good = {1.5, 1.6, {0, 0, 1}, 1000, 1.0};
     biref_jones T;
@@ -260,17 +260,18 @@ static void bad_input(void)
 int main(int argc, char **argv)
 {
     static const test_case cases[] = {
-        {"isotropic_limit", isotropic_limit},
-        {"frustrated_total_reflection", frustrated_total_reflection},
-        {"energy", energy},
-        {"wave_plate", wave_plate},
-        {"index_matched_surround", index_matched_surround},
-        {"axis_along_the_normal", axis_along_the_normal},
-        {"path_expansion", path_expansion},
+        {"isotropic_slab_equals_airy_formula", isotropic_slab_equals_airy_formula},
+        {"frustrated_total_reflection_equals_airy_formula", frustrated_total_reflection_equals_airy_formula},
+        {"lossless_random_slabs_have_t_plus_r_equal_to_one", lossless_random_slabs_have_t_plus_r_equal_to_one},
+        {"normal_incidence_is_a_wave_plate_with_airy_eigenmodes",
+         normal_incidence_is_a_wave_plate_with_airy_eigenmodes},
+        {"index_matched_surround_gives_the_retardance_phase", index_matched_surround_gives_the_retardance_phase},
+        {"axis_along_the_normal_equals_isotropic_airy_formula", axis_along_the_normal_equals_isotropic_airy_formula},
+        {"path_sum_to_order_8_equals_closed_form", path_sum_to_order_8_equals_closed_form},
         {"flipping_a_prepared_state", flipping_a_prepared_state},
-        {"path_counts", path_counts},
-        {"huge_or_tiny_axis", huge_or_tiny_axis},
-        {"bad_input", bad_input},
+        {"path_counts_per_order_and_too_high_order_refused", path_counts_per_order_and_too_high_order_refused},
+        {"axis_length_does_not_change_the_result", axis_length_does_not_change_the_result},
+        {"invalid_slab_angle_or_wavelength_is_refused", invalid_slab_angle_or_wavelength_is_refused},
     };
     return test_run_cases("test_slab", cases, TEST_COUNT(cases), argc, argv);
 }

@@ -62,7 +62,7 @@ static void propagating_slabs_match_tmm(void)
 
 /* Evanescent modes inside (slab indices below eta_i sin theta): thin slabs, where the
  * transfer matrix stays well conditioned. */
-static void evanescent_modes_inside(void)
+static void slabs_with_evanescent_modes_inside_match_tmm(void)
 {
     double wa = 0, wp = 0;
     int ev = 0, ran_ev = 0;
@@ -88,7 +88,7 @@ int main(int argc, char **argv)
 {
     static const test_case cases[] = {
         {"propagating_slabs_match_tmm", propagating_slabs_match_tmm},
-        {"evanescent_modes_inside", evanescent_modes_inside},
+        {"slabs_with_evanescent_modes_inside_match_tmm", slabs_with_evanescent_modes_inside_match_tmm},
     };
     return test_run_cases("test_slab_vs_tmm", cases, TEST_COUNT(cases), argc, argv);
 }

@@ -90,7 +90,7 @@ static void airy(double n0, double n1, double theta, double k0d, double complex 
     }
 }
 
-static void test_airy(void)
+static void test_isotropic_slab_equals_airy_formula(void)
 {
     const double thetas[] = {0.0, 20.0, 45.0, 70.0, 85.0};
     const double thick[] = {500.0, 3217.0, 1.0e5, 2.0e6};
@@ -171,7 +171,7 @@ static void random_axis(test_rng *rng, double a[3])
     } while (n2 > 1.0 || n2 < 1e-4);
 }
 
-static void test_energy(void)
+static void test_lossless_random_slabs_conserve_energy(void)
 {
     test_rng rng = {0x9E3779B97F4A7C15ULL};
     int ran = 0, illcond = 0, other = 0;
@@ -238,7 +238,7 @@ static void to_oe(const biref_jones *J, int reflected, double complex out[2][2])
         }
 }
 
-static void test_wave_plate(void)
+static void test_normal_incidence_is_a_wave_plate(void)
 {
     const double eta_o = 1.55, eta_e = 1.60;
     const double thick[] = {1000.0, 12345.0, 1.0e5, 1.0e6};
@@ -301,7 +301,7 @@ static double q_e_down(double eta_o, double eta_e, double b, double g, double K)
     return (B - sqrt(B * B - A2 * C)) / A2;
 }
 
-static void test_plane_of_incidence(void)
+static void test_axis_azimuth_about_the_normal_matches_closed_forms(void)
 {
     const double eta_o = 1.55, eta_e = 1.57;
     const double phis[] = {0.0, 30.0, 60.0, 90.0, 135.0};
@@ -349,7 +349,7 @@ static void test_plane_of_incidence(void)
 /* 5. Sign of the axis                                                        */
 /* ------------------------------------------------------------------------- */
 
-static void test_axis_sign(void)
+static void test_axis_sign_and_length_do_not_change_the_result(void)
 {
     test_rng rng = {12345};
     for (int k = 0; k < 50; k++) {
@@ -379,7 +379,7 @@ static void test_axis_sign(void)
 /* 6. Invalid inputs                                                          */
 /* ------------------------------------------------------------------------- */
 
-static void test_invalid(void)
+static void test_invalid_slabs_are_refused(void)
 {
     const biref_slab good = make_slab(1.5, 1.6, 0.0, 0.0, 1.0, 1000.0, 1.0);
     biref_jones T, R;
@@ -427,7 +427,7 @@ static void test_invalid(void)
 /* Ill-conditioned cases are refused rather than answered badly.              */
 /* ------------------------------------------------------------------------- */
 
-static void test_illcond(void)
+static void test_thick_slab_in_total_reflection_reports_illcond(void)
 {
     /* Thick slab under total reflection: evanescent growth exp(k0 d kappa) is astronomically large. */
     biref_slab s = make_slab(1.0, 1.0, 0.0, 0.0, 1.0, 1.0e5, 1.33);
@@ -438,13 +438,13 @@ static void test_illcond(void)
 int main(int argc, char **argv)
 {
     static const test_case cases[] = {
-        {"airy", test_airy},
-        {"energy", test_energy},
-        {"wave_plate", test_wave_plate},
-        {"plane_of_incidence", test_plane_of_incidence},
-        {"axis_sign", test_axis_sign},
-        {"invalid", test_invalid},
-        {"illcond", test_illcond},
+        {"isotropic_slab_equals_airy_formula", test_isotropic_slab_equals_airy_formula},
+        {"lossless_random_slabs_conserve_energy", test_lossless_random_slabs_conserve_energy},
+        {"normal_incidence_is_a_wave_plate", test_normal_incidence_is_a_wave_plate},
+        {"axis_azimuth_about_the_normal_matches_closed_forms", test_axis_azimuth_about_the_normal_matches_closed_forms},
+        {"axis_sign_and_length_do_not_change_the_result", test_axis_sign_and_length_do_not_change_the_result},
+        {"invalid_slabs_are_refused", test_invalid_slabs_are_refused},
+        {"thick_slab_in_total_reflection_reports_illcond", test_thick_slab_in_total_reflection_reports_illcond},
     };
     return test_run_cases("test_tmm", cases, TEST_COUNT(cases), argc, argv);
 }

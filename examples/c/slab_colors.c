@@ -64,8 +64,24 @@ int main(void)
         biref_spectral_destroy(sp);
         return 1;
     }
+    /* The integrator: one per method, created once (the analytic method by default). */
+    biref_integrator_options opts;
+    biref_integrator_options_default(&opts);
+    biref_integrator *it = NULL;
+    st = biref_integrator_create(sp, &opts, &it, msg, sizeof msg);
+    if (st != BIREF_OK) {
+        fprintf(stderr, "slab_colors: %s\n", msg);
+        biref_spectral_destroy(sp);
+        return 1;
+    }
     biref_spectrum spectrum;
-    biref_spectrum_analytic(sp, &state, &spectrum);
+    st = biref_integrate_spectrum(it, &state, &spectrum);
+    biref_integrator_destroy(it);
+    if (st != BIREF_OK) {
+        fprintf(stderr, "slab_colors: %s\n", biref_status_string(st));
+        biref_spectral_destroy(sp);
+        return 1;
+    }
     const double unpolarized[2] = {0.5, 0.5}, no_analyzer[2] = {1.0, 1.0};
     double xyz_T[3], xyz_R[3], rgb_T[3], rgb_R[3];
     biref_spectrum_mix(spectrum.T, unpolarized, no_analyzer, xyz_T);

@@ -23,5 +23,7 @@
 #include "biref/photoelastic.h"
 #include "biref/shading.h"
 #include "biref/gpu.h"
+#include "biref/material.h"
+#include "biref/experimental.h" /* empty unless BIREF_EXPERIMENTAL_API is defined first */
 
 #endif /* BIREF_BIREF_H */

@@ -4,8 +4,7 @@
  * worker then (as a colour-management transform does), so the per-sample call has no method
  * switch and no allocation. One call integrates a prepared slab state (optics.h) for
  * transmission and/or reflection under one light (polarization.h) and returns band-normalised
- * XYZ with a status. A batch call takes a packet of slab states (the pixels of a tile), so that
- * vectorised or GPU workers can be plugged in behind the same interface.
+ * XYZ with a status.
  *
  * Immutable after creation and shareable between threads. The spectral context is borrowed: it
  * must outlive the integrator. */
@@ -66,12 +65,6 @@ typedef struct {
  * entry point: no message buffer (common.h), each code has the one meaning given here. */
 BIREF_API biref_status biref_integrate(const biref_integrator *it, const biref_slab_state *st, biref_sides sides,
                              const biref_light *light, biref_integration *out);
-
-/* The same for n slab states: one light for all (light_stride 0) or one per state (1). out[i]
- * and, when not NULL, status[i] per state; returns BIREF_OK or the first failure's status. */
-BIREF_API biref_status biref_integrate_batch(const biref_integrator *it, const biref_slab_state *states, size_t n,
-                                   biref_sides sides, const biref_light *lights, size_t light_stride,
-                                   biref_integration *out, biref_status *status);
 
 /* All four s/p input/output pair intensities of transmission and reflection (the paper's
  * quantities, eq. 17), from which any light of the paper's model mixes (biref_light_mix).

@@ -11,12 +11,14 @@ axis is given in that frame and normalised by biref.
 import json as _json
 import math as _math
 import os as _os
+import warnings as _warnings
 
 import numpy as _np
 
 from ._native import ffi as _ffi, lib as _lib, library_path
 
-__all__ = ["slab", "spectrum", "render", "photoelastic", "BirefError", "library_path", "__version__"]
+__all__ = ["slab", "spectrum", "material", "materials", "render", "photoelastic", "BirefError", "library_path",
+           "__version__"]
 __version__ = "0.1.0"
 
 _SP = ("s", "p")
@@ -78,6 +80,75 @@ def _make_slab(eta_o, eta_e, axis, thickness_mm, thickness_um, thickness_nm, eta
     return slab
 
 
+def _material(name, eta_o, eta_e):
+    """The named dispersive material (a cdata pointer), or None for constant indices."""
+    if name is None:
+        if eta_o is None or eta_e is None:
+            raise ValueError("missing eta_o/eta_e (or material)")
+        return None
+    if eta_o is not None or eta_e is not None:
+        raise ValueError(f"{'eta_o' if eta_o is not None else 'eta_e'}: the material {name!r} gives the indices")
+    m = _lib.biref_material_find(str(name).encode())
+    if m == _ffi.NULL:
+        raise ValueError(f"material: unknown material {name!r} (biref.materials() names them)")
+    return m
+
+
+def _material_band(m, lo, hi):
+    """Refuses an unphysical band (one line), warns about its extrapolated part, as the CLI does;
+    returns the material's JSON fields over the band."""
+    msg = _ffi.new("char[]", _MSG)
+    s = _lib.biref_material_check_band(m, lo, hi, msg, _MSG)
+    if s != _lib.BIREF_OK:
+        _msg_error(s, msg)
+    info = _ffi.new("biref_material_info *")
+    _lib.biref_material_get_info(m, info)
+    ex = _ffi.new("double[2][2]")
+    n = _lib.biref_material_extrapolated(m, lo, hi, ex)
+    name = _ffi.string(info.name).decode()
+    for i in range(n):
+        _warnings.warn(f"{name}: {ex[i][0]:g}-{ex[i][1]:g} nm is outside the valid range "
+                       f"{info.range_nm[0]:g}-{info.range_nm[1]:g} nm (extrapolated)", stacklevel=3)
+    return {"name": name, "source": _ffi.string(info.source).decode(),
+            "range_nm": [info.range_nm[0], info.range_nm[1]] if _math.isfinite(info.range_nm[1]) else None,
+            "extrapolated_nm": [[ex[i][0], ex[i][1]] for i in range(n)]}
+
+
+def _slab_at(m, geometry, lambda_nm):
+    """The slab of material m at one wavelength (geometry's axis, thickness, eta_i)."""
+    out = _ffi.new("biref_slab *")
+    _check(_lib.biref_material_slab_at(m, geometry, lambda_nm, out), "material")
+    return out
+
+
+def materials():
+    """The named dispersive materials: a list of dicts (name, description, isotropic, range_nm,
+    source), as ``biref material list --json``."""
+    out = []
+    info = _ffi.new("biref_material_info *")
+    for i in range(_lib.biref_material_catalogue_size()):
+        _lib.biref_material_get_info(_lib.biref_material_catalogue(i), info)
+        out.append({"name": _ffi.string(info.name).decode(), "description": _ffi.string(info.description).decode(),
+                    "isotropic": bool(info.isotropic), "range_nm": [info.range_nm[0], info.range_nm[1]],
+                    "source": _ffi.string(info.source).decode()})
+    return out
+
+
+def material(name, lambda_nm=589.3):
+    """Indices and group indices (n - lambda dn/dlambda) of a named material at lambda_nm: the
+    fields of ``biref material NAME --json``."""
+    m = _material(name, None, None)
+    lam = float(lambda_nm)
+    if not lam > 0:
+        raise ValueError(f"lambda_nm: must be positive, got {lam:g}")
+    band = _material_band(m, lam, lam)
+    n = _ffi.new("double[2]")
+    ng = _ffi.new("double[2]")
+    _check(_lib.biref_material_indices(m, lam, n, ng), "material")
+    return {"name": band["name"], "lambda_nm": lam, "n_o": n[0], "n_e": n[1], "n_o_group": ng[0],
+            "n_e_group": ng[1], "source": band["source"], "range_nm": band["range_nm"]}
+
+
 def _theta_rad(theta_deg):
     t = float(theta_deg) * _math.pi / 180.0
     msg = _ffi.new("char[]", _MSG)
@@ -87,9 +158,9 @@ def _theta_rad(theta_deg):
     return t
 
 
-def _input(slab, theta_deg, **extra):
-    d = {"eta_o": slab.eta_o, "eta_e": slab.eta_e, "axis": list(slab.axis), "thickness_nm": slab.thickness_nm,
-         "theta_deg": theta_deg}
+def _input(slab, theta_deg, material=None, **extra):
+    d = {"material": material, "eta_o": slab.eta_o, "eta_e": slab.eta_e, "axis": list(slab.axis),
+         "thickness_nm": slab.thickness_nm, "theta_deg": theta_deg}
     d.update(extra)
     d["eta_i"] = slab.eta_i
     return d
@@ -119,21 +190,32 @@ def _modes(st):
     return out
 
 
-def slab(eta_o, eta_e, axis, thickness_mm=None, thickness_um=None, thickness_nm=None, theta_deg=0.0,
-         lambda_nm=550.0, eta_i=1.0, method="closed-form"):
+def slab(eta_o=None, eta_e=None, axis=None, thickness_mm=None, thickness_um=None, thickness_nm=None, theta_deg=0.0,
+         lambda_nm=550.0, eta_i=1.0, method="closed-form", material=None):
     """Transmission and reflection of a plane wave by the slab: the fields of ``biref slab --json``.
 
     T and R are power fractions indexed [input s/p][output s/p]; jones_T/jones_R the complex
     amplitudes as [re, im]. theta_deg and lambda_nm may be numpy arrays (broadcast together): the
     leaves of T, R, energy and K are then arrays of the broadcast shape, jones_T/jones_R complex
     arrays, and the per-angle details (K_max, modes) are left out. method: "closed-form" (paper
-    eq. 17) or "tmm" (the independent 4x4 transfer matrix).
+    eq. 17) or "tmm" (the independent 4x4 transfer matrix). material: a named dispersive material
+    (biref.materials()) instead of eta_o/eta_e, its indices taken at each lambda_nm.
     """
     if method not in ("closed-form", "tmm"):
         raise ValueError(f"method: expected closed-form or tmm, got {method!r}")
-    sl = _make_slab(eta_o, eta_e, axis, thickness_mm, thickness_um, thickness_nm, eta_i)
+    if axis is None:
+        raise ValueError("missing axis")
+    mat = _material(material, eta_o, eta_e)
+    sl = _make_slab(1.5 if mat else eta_o, 1.5 if mat else eta_e, axis, thickness_mm, thickness_um, thickness_nm,
+                    eta_i)
     if _np.ndim(theta_deg) == 0 and _np.ndim(lambda_nm) == 0:
-        return _slab_one(sl, float(theta_deg), float(lambda_nm), method)
+        lam = float(lambda_nm)
+        if not mat:
+            return _slab_one(sl, float(theta_deg), lam, method)
+        if not lam > 0:
+            raise ValueError(f"lambda_nm: must be positive, got {lam:g}")
+        band = _material_band(mat, lam, lam)
+        return _slab_one(_slab_at(mat, sl, lam), float(theta_deg), lam, method, band)
     th, lam = _np.broadcast_arrays(_np.asarray(theta_deg, dtype=float), _np.asarray(lambda_nm, dtype=float))
     if not _np.all(lam > 0):
         raise ValueError("lambda_nm: must be positive")
@@ -144,13 +226,15 @@ def slab(eta_o, eta_e, axis, thickness_mm=None, thickness_um=None, thickness_nm=
     T = _ffi.new("biref_jones *")
     R = _ffi.new("biref_jones *")
     states = {}
+    band = _material_band(mat, float(lam.min()), float(lam.max())) if mat and lam.size else None
     for idx in _np.ndindex(th.shape):
-        t = float(th[idx])
-        st = states.get(t)
+        t, l = float(th[idx]), float(lam[idx])
+        key = (t, l) if mat else t
+        st = states.get(key)
         if st is None:
-            st = states[t] = _prepare(sl, _theta_rad(t))
+            st = states[key] = _prepare(_slab_at(mat, sl, l) if mat else sl, _theta_rad(t))
         if method == "tmm":
-            _check(_lib.biref_slab_jones_tmm(sl, st.theta, float(lam[idx]), T, R), "tmm")
+            _check(_lib.biref_slab_jones_tmm(_ffi.addressof(st, "slab"), st.theta, l, T, R), "tmm")
         else:
             _lib.biref_slab_jones_at(st, float(lam[idx]), T, R)
         JT[idx] = [[T.m[i][o] for o in range(2)] for i in range(2)]
@@ -160,7 +244,8 @@ def slab(eta_o, eta_e, axis, thickness_mm=None, thickness_um=None, thickness_nm=
     PT, PR = _np.abs(JT) ** 2, _np.abs(JR) ** 2
     return {
         "method": method,
-        "input": _input(sl, th, lambda_nm=lam),
+        "input": _input(sl, th, band, lambda_nm=lam) if not mat else
+        dict(_input(sl, th, band, lambda_nm=lam), eta_o=None, eta_e=None),  # n(lambda) per element
         "T": _sp_matrix(_np.moveaxis(PT, (-2, -1), (0, 1))),
         "R": _sp_matrix(_np.moveaxis(PR, (-2, -1), (0, 1))),
         "jones_T": _sp_matrix(_np.moveaxis(JT, (-2, -1), (0, 1))),
@@ -171,7 +256,7 @@ def slab(eta_o, eta_e, axis, thickness_mm=None, thickness_um=None, thickness_nm=
     }
 
 
-def _slab_one(sl, theta_deg, lambda_nm, method):
+def _slab_one(sl, theta_deg, lambda_nm, method, band=None):
     if not lambda_nm > 0:
         raise ValueError(f"lambda_nm: must be positive, got {lambda_nm:g}")
     theta = _theta_rad(theta_deg)
@@ -193,7 +278,7 @@ def _slab_one(sl, theta_deg, lambda_nm, method):
     cj = lambda J: [[[J.m[i][o].real, J.m[i][o].imag] for o in range(2)] for i in range(2)]  # noqa: E731
     return {
         "method": method,
-        "input": _input(sl, theta_deg, lambda_nm=lambda_nm),
+        "input": _input(sl, theta_deg, band, lambda_nm=lambda_nm),
         "T": _sp_matrix(pt),
         "R": _sp_matrix(pr),
         "jones_T": _sp_matrix(cj(T)),
@@ -270,9 +355,22 @@ def _light(polarization, polarizer, stokes, analyzer):
     return w_in, mask, S, P, pol_name, an
 
 
-def spectrum(eta_o, eta_e, axis, thickness_mm=None, thickness_um=None, thickness_nm=None, theta_deg=0.0,
-             eta_i=1.0, method="analytic", samples=None, order=None, tolerance=None, cmf="cie1931",
-             range_nm=(380.0, 700.0), polarization="unpolarized", polarizer=None, stokes=None, analyzer="none"):
+def _dispersive_one(plan, mat, sl, theta, general, C, P, w_in, mask, spec, xyz, mixed, idx):
+    """One angle of a dispersive slab: n(lambda) at every sample of the plan."""
+    _check(_lib.biref_spectrum_numeric_dispersive(plan, mat, sl, theta, spec), "numeric integration")
+    for w in range(2):
+        if general:
+            _check(_lib.biref_spectrum_numeric_dispersive_polarized(plan, mat, sl, theta, w, C, P, xyz),
+                   "numeric integration")
+        else:
+            _lib.biref_spectrum_mix(spec.R if w else spec.T, w_in, mask, xyz)
+        mixed[idx + (w,)] = list(xyz)
+
+
+def spectrum(eta_o=None, eta_e=None, axis=None, thickness_mm=None, thickness_um=None, thickness_nm=None,
+             theta_deg=0.0, eta_i=1.0, method="analytic", samples=None, order=None, tolerance=None, cmf="cie1931",
+             range_nm=(380.0, 700.0), polarization="unpolarized", polarizer=None, stokes=None, analyzer="none",
+             material=None):
     """Colour of the light transmitted and reflected by the slab: the fields of ``biref spectrum --json``.
 
     T and R are band-normalised XYZ ([input s/p][output s/p] -> [X, Y, Z]); "mixed" holds the colour
@@ -280,9 +378,16 @@ def spectrum(eta_o, eta_e, axis, thickness_mm=None, thickness_um=None, thickness
     ``polarizer`` "linear:DEG" / "circular:+1", or ``stokes``) seen through ``analyzer``. General
     states (polarizer, stokes, linear/circular analyzers) need method numeric, ground-truth or
     expansion, as on the command line. theta_deg may be a numpy array: every leaf then gains its
-    shape in front of the colour axis.
+    shape in front of the colour axis. material: a named dispersive material (biref.materials())
+    instead of eta_o/eta_e, its indices evaluated at every sample (methods numeric and ground-truth).
     """
     m = _method(method)
+    if axis is None:
+        raise ValueError("missing axis")
+    mat = _material(material, eta_o, eta_e)
+    if mat and m in (_lib.BIREF_METHOD_ANALYTIC, _lib.BIREF_METHOD_EXPANSION):
+        raise ValueError(f"material: the {method} method does not take dispersion yet; use method numeric or "
+                         "ground-truth")
     if samples is not None and m != _lib.BIREF_METHOD_NUMERIC:
         raise ValueError(f"samples: only valid with method numeric (method is {method})")
     if (order is not None or tolerance is not None) and m != _lib.BIREF_METHOD_EXPANSION:
@@ -318,7 +423,8 @@ def spectrum(eta_o, eta_e, axis, thickness_mm=None, thickness_um=None, thickness
     if m == _lib.BIREF_METHOD_NUMERIC and not 1 <= n_samples <= 65536:
         raise ValueError("samples: must be between 1 and 65536")
 
-    sl = _make_slab(eta_o, eta_e, axis, thickness_mm, thickness_um, thickness_nm, eta_i)
+    sl = _make_slab(1.5 if mat else eta_o, 1.5 if mat else eta_e, axis, thickness_mm, thickness_um, thickness_nm,
+                    eta_i)
     cfg = _ffi.new("biref_spectral_config *")
     _lib.biref_spectral_config_default(cfg)
     kind = _ffi.new("biref_cmf_kind *")
@@ -335,6 +441,7 @@ def spectrum(eta_o, eta_e, axis, thickness_mm=None, thickness_um=None, thickness
         _call("numeric plan", _lib.biref_numeric_plan_create, sp, n_samples, pp)
         plan = _ffi.gc(pp[0], _lib.biref_numeric_plan_destroy)
 
+    band = _material_band(mat, cfg.lambda_min_nm, cfg.lambda_max_nm) if mat else None
     thetas = _np.asarray(theta_deg, dtype=float)
     spec = _ffi.new("biref_spectrum *")
     T_all = _np.empty(thetas.shape + (2, 2, 3))
@@ -345,6 +452,11 @@ def spectrum(eta_o, eta_e, axis, thickness_mm=None, thickness_um=None, thickness
     order_used = _ffi.new("int *")
     orders = _np.full(thetas.shape + (2,), -1, dtype=int)
     for idx in _np.ndindex(thetas.shape):
+        if mat:
+            _dispersive_one(plan, mat, sl, _theta_rad(thetas[idx]), general, C, P, w_in, mask, spec, xyz, mixed, idx)
+            T_all[idx] = _np.array(_ffi.unpack(_ffi.cast("double *", spec.T), 12)).reshape(2, 2, 3)
+            R_all[idx] = _np.array(_ffi.unpack(_ffi.cast("double *", spec.R), 12)).reshape(2, 2, 3)
+            continue
         st = _prepare(sl, _theta_rad(thetas[idx]))
         tot[idx] = bool(st.total_reflection)
         if plan is not None:
@@ -386,8 +498,9 @@ def spectrum(eta_o, eta_e, axis, thickness_mm=None, thickness_um=None, thickness
         "samples": n_samples or None,
         "cmf": str(cmf),
         "range_nm": [cfg.lambda_min_nm, cfg.lambda_max_nm],
-        "input": _input(sl, float(thetas) if scalar else thetas),
-        "total_reflection": bool(tot) if scalar else tot,
+        "input": _input(sl, float(thetas) if scalar else thetas, band) if not mat else
+        dict(_input(sl, float(thetas) if scalar else thetas, band), eta_o=None, eta_e=None),
+        "total_reflection": None if mat else bool(tot) if scalar else tot,
         "T": pairs(T_all),
         "R": pairs(R_all),
         "mixed": {

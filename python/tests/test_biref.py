@@ -208,3 +208,40 @@ def test_photoelastic_mono_and_errors():
         biref.photoelastic(material="unobtainium")
     with pytest.raises(ValueError, match="preset"):
         biref.photoelastic(preset="gear")
+
+
+@needs_cli
+def test_material_matches_cli():
+    ref = cli_json("material", "calcite", "--lambda-nm", "589.3")
+    assert_same(biref.material("calcite", lambda_nm=589.3), ref, 1e-15)
+    names = [m["name"] for m in biref.materials()]
+    assert "rutile" in names and "pmma" in names
+
+
+@needs_cli
+def test_slab_with_a_material_matches_cli():
+    kw = dict(material="linbo3", axis=(0.3, 0.9, 0.2), thickness_um=20, theta_deg=40, lambda_nm=450)
+    ref = cli_json("slab", "--material", "linbo3", "--axis", "0.3,0.9,0.2", "--thickness-um", "20", "--theta-deg",
+                   "40", "--lambda-nm", "450")
+    assert_same(biref.slab(**kw), ref, 1e-13)
+    # Vectorised over the wavelength: each element is the slab of that wavelength's indices.
+    lam = np.array([420.0, 450.0, 600.0])
+    vec = biref.slab(**dict(kw, lambda_nm=lam, method="tmm"))
+    assert abs(vec["T"]["s"]["p"][1] - ref["T"]["s"]["p"]) < 1e-9
+
+
+@needs_cli
+def test_spectrum_with_a_material_matches_cli():
+    with pytest.warns(UserWarning, match="extrapolated"):
+        got = biref.spectrum(material="rutile", axis=(0.3, 0.9, 0.2), thickness_um=10, theta_deg=30,
+                             method="numeric", samples=96, polarizer="linear:45", analyzer="linear:-45")
+    ref = cli_json("spectrum", "--material", "rutile", "--axis", "0.3,0.9,0.2", "--thickness-um", "10",
+                   "--theta-deg", "30", "--method", "numeric", "--spectral-samples", "96", "--polarizer", "linear:45",
+                   "--analyzer", "linear:-45")
+    assert_same(got, ref, 1e-12)
+    with pytest.raises(ValueError, match="dispersion"):
+        biref.spectrum(material="calcite", axis=(0, 0, 1), thickness_um=10)
+    with pytest.raises(ValueError, match="unknown material"):
+        biref.slab(material="unobtainium", axis=(0, 0, 1), thickness_um=10)
+    with pytest.raises(ValueError, match="eta_o"):
+        biref.slab(eta_o=1.5, material="calcite", axis=(0, 0, 1), thickness_um=10)

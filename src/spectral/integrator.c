@@ -329,3 +329,5 @@ biref_status biref_integrate_hit(const biref_integrator *it, const biref_slab_hi
     biref_status s = biref_slab_prepare_trusted(&hit->slab, hit->theta, &st);
     return s != BIREF_OK ? s : scalar_hit(it, &st, fp, light, T, R);
 }
+
+const biref_numeric_plan *biref_integrator_plan(const biref_integrator *it) { return it->plan; }

@@ -2,6 +2,7 @@
 #ifndef BIREF_INTEGRATOR_INTERNAL_H
 #define BIREF_INTEGRATOR_INTERNAL_H
 
+#include "biref/experimental.h" /* the library is built with BIREF_EXPERIMENTAL_API */
 #include "biref/integrator.h"
 #include "spectral/analytic_packet.h"
 #include "spectral/phase_prefilter.h"
@@ -30,6 +31,10 @@ void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_
  * fp unless it is NULL); the outputs are undefined unless it returns BIREF_OK. */
 biref_status biref_integrate_hit(const biref_integrator *it, const biref_slab_hit *hit, const biref_opl_footprint *fp,
                                  const biref_light *light, double T[3], double R[3]);
+
+/* The numeric methods' plan (NULL for the analytic and expansion methods): the dispersive
+ * integration (numeric_dispersive.c) samples at its wavelengths. */
+const biref_numeric_plan *biref_integrator_plan(const biref_integrator *it);
 
 /* The instruction set of the integrator's packet kernel (BIREF_SIMD_SCALAR: none). */
 biref_simd_isa biref_integrator_simd(const biref_integrator *it);

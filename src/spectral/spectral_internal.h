@@ -5,6 +5,7 @@
 #include <complex.h>
 #include <math.h>
 
+#include "biref/experimental.h" /* the library is built with BIREF_EXPERIMENTAL_API */
 #include "biref/spectral.h"
 
 #define BIREF_COHERENT_PLANS 9

@@ -7,7 +7,7 @@ set -u
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 cd "$root" || exit 1
 fails=0
-docs=(docs/*.md README.md)
+docs=(docs/*.md docs/history/*.md README.md)
 
 if grep -n -i -E '\.\./shared|/work/|reading-notes|\bissues? ?#?[0-9]+\b|(^|[ (])#[0-9]+\b|\bengineers?\b|\bsessions?\b|\bthis machine\b' \
   "${docs[@]}"; then

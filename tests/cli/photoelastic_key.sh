@@ -5,7 +5,7 @@ set -u
 . "$(dirname "$0")/lib.sh"
 png_size() { od -An -tu1 -j16 -N8 "$1" | awk '{ printf "%d %d\n", $1*16777216+$2*65536+$3*256+$4, $5*16777216+$6*65536+$7*256+$8 }'; }
 
-expect_ok "plain" photoelastic --preset disk --size 200 -o "$tmpdir/a.png"
+expect_ok "picture without key or scale bar" photoelastic --preset disk --size 200 -o "$tmpdir/a.png"
 expect_ok "scale bar" photoelastic --preset disk --size 200 --scale-bar -o "$tmpdir/b.png" --json
 expect_grep "bar length" '"scale_bar_mm":[[:space:]]*10'
 [ "$(png_size "$tmpdir/b.png")" = "200 200" ] || { echo "FAIL (scale bar changes the size)"; fails=$((fails + 1)); }

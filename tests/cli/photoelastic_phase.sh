@@ -10,7 +10,7 @@ expect_ok "demodulate help" photoelastic demodulate --help
 expect_grep "help" "--zero-order"
 expect_ok "six PNG steps" photoelastic "${common[@]}" --phase-steps 6 -o "$tmpdir/s.png"
 expect_grep "step 6" "s-6.png: quarter-wave plate 135 deg, analyzer 135 deg"
-expect_ok "truth" photoelastic "${common[@]}" --map fringe-order -o "$tmpdir/truth.csv"
+expect_ok "fringe-order map of the closed form" photoelastic "${common[@]}" --map fringe-order -o "$tmpdir/truth.csv"
 check_round_trip() { # DIR: fringe-order.csv against the truth map
   paste -d, "$tmpdir/truth.csv" "$1/fringe-order.csv" | awk -F, '
     NR == 1 { next }

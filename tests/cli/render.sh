@@ -79,7 +79,7 @@ rc=0; "$BIREF" render "$good" -o "$tmpdir/adir" "${small[@]}" >"$tmpdir/out" 2>"
 if ls "$tmpdir" | grep -q '\.tmp'; then echo "FAIL (temporary file left behind)"; fails=$((fails + 1)); fi
 
 # Render, re-render with another thread count, diff: identical. A different method differs a little.
-expect_ok "render" render "$good" -o "$tmpdir/a.png" --threads 1 --quiet --json --pfm "$tmpdir/a.pfm"
+expect_ok "render writing PNG, PFM and JSON" render "$good" -o "$tmpdir/a.png" --threads 1 --quiet --json --pfm "$tmpdir/a.pfm"
 expect_grep "render json mean_srgb" '"mean_srgb":'
 expect_grep "render json ms" '"ms":'
 [ -s "$tmpdir/a.pfm" ] || { echo "FAIL (no PFM)"; fails=$((fails + 1)); }

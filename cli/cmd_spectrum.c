@@ -157,9 +157,7 @@ static const cli_opt OPTS[] = {
                "circular:+1|-1 (sign of S3); replaces --polarization"),
     CLI_CUSTOM("stokes", "S0,S1,S2,S3", OPT_STOKES, "any (partially) polarised input in the s/p basis"),
     CLI_CUSTOM("analyzer", "A", OPT_ANALYZER,
-               "none (default), s, p, linear:DEG or circular:+1|-1\n"
-               "(linear/circular/--polarizer/--stokes need numeric, ground-truth\n"
-               "or expansion: the paper's method handles s/p only)"),
+               "none (default), s, p, linear:DEG or circular:+1|-1"),
     CLI_FLAG("json", 0, F(json), "machine-readable output"),
     {.name = "samples", .kind = CLI_OPT_INT, .value = "N", .offset = F(samples), .lo = 1, .hi = MAX_SAMPLES,
      .old_of = "spectral-samples"},
@@ -201,11 +199,6 @@ static int check_args(spectrum_args *a)
     if (disp && (a->method == BIREF_METHOD_ANALYTIC || a->method == BIREF_METHOD_EXPANSION))
         return cli_error(CMD, "%s: the %s method does not take dispersion yet; use --method numeric or ground-truth",
                          disp, biref_method_name(a->method)),
-               -1;
-    if ((a->general_in || a->general_an) && a->method == BIREF_METHOD_ANALYTIC)
-        return cli_error(CMD,
-                         "%s needs --method numeric, ground-truth or expansion (the paper's method handles s/p only)",
-                         a->general_in ? "--polarizer/--stokes" : "--analyzer linear/circular"),
                -1;
     if (!a->general_in) {
         /* The s/p fractions as a (diagonal) Stokes vector, for the output. */

@@ -58,9 +58,9 @@ typedef struct {
     int order_used[2];   /* the expansion's pair order for T and R, -1 where not used */
 } biref_integration;
 
-/* Integrates a prepared slab for the requested sides under `light`. BIREF_ERR_INVALID for a
- * light the method cannot handle (the analytic method takes the paper's s/p model only) or no
- * side; BIREF_ERR_ILLCOND where the method breaks down or the result is not finite (the caller
+/* Integrates a prepared slab for the requested sides under `light` (every method takes every
+ * light: the analytic method integrates a light outside the paper's s/p model with the general
+ * coherency/analyzer terms of the GPU shader, docs/GPU.md). BIREF_ERR_INVALID for no side; BIREF_ERR_ILLCOND where the method breaks down or the result is not finite (the caller
  * decides what to show). No allocation; the expansion needs about 250 KB of stack. A per-sample
  * entry point: no message buffer (common.h), each code has the one meaning given here. */
 BIREF_API biref_status biref_integrate(const biref_integrator *it, const biref_slab_state *st, biref_sides sides,

@@ -397,9 +397,6 @@ def spectrum(eta_o=None, eta_e=None, axis=None, thickness_mm=None, thickness_um=
     w_in, mask, S, P, pol_name, an_name = _light(polarization, polarizer, stokes, analyzer)
     general_in, general_an = S is not None, P is not None
     general = general_in or general_an
-    if general and m == _lib.BIREF_METHOD_ANALYTIC:
-        raise ValueError(("polarizer/stokes" if general_in else "analyzer linear/circular") +
-                         " needs method numeric, ground-truth or expansion (the paper's method handles s/p only)")
     if S is None:
         S = [1.0, w_in[0] - w_in[1], 0.0, 0.0]
     if P is None:
@@ -441,6 +438,18 @@ def spectrum(eta_o=None, eta_e=None, axis=None, thickness_mm=None, thickness_um=
         _call("numeric plan", _lib.biref_numeric_plan_create, sp, n_samples, pp)
         plan = _ffi.gc(pp[0], _lib.biref_numeric_plan_destroy)
 
+    integ = None
+    if general and m == _lib.BIREF_METHOD_ANALYTIC:
+        # Any other light: the analytic method's general terms, through the integrator.
+        io = _ffi.new("biref_integrator_options *")
+        _lib.biref_integrator_options_default(io)
+        ip = _ffi.new("biref_integrator **")
+        _call("integrator", _lib.biref_integrator_create, sp, io, ip)
+        integ = _ffi.gc(ip[0], _lib.biref_integrator_destroy)
+        light = _ffi.new("biref_light *")
+        _lib.biref_light_coherency(C, light)
+        _lib.biref_light_set_analyzer(light, P)
+        res = _ffi.new("biref_integration *")
     band = _material_band(mat, cfg.lambda_min_nm, cfg.lambda_max_nm) if mat else None
     thetas = _np.asarray(theta_deg, dtype=float)
     spec = _ffi.new("biref_spectrum *")
@@ -473,6 +482,9 @@ def spectrum(eta_o=None, eta_e=None, axis=None, thickness_mm=None, thickness_um=
             elif m == _lib.BIREF_METHOD_EXPANSION:
                 _check(_lib.biref_spectrum_expansion_polarized(sp, st, w, C, P, eopts, xyz, order_used), "expansion")
                 orders[idx + (w,)] = order_used[0]
+            elif integ is not None:
+                _check(_lib.biref_integrate(integ, st, 2 if w else 1, light, res), "analytic")
+                xyz = res.R if w else res.T
             else:
                 _lib.biref_spectrum_mix(spec.R if w else spec.T, w_in, mask, xyz)
             mixed[idx + (w,)] = list(xyz)

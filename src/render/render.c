@@ -48,10 +48,6 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
     if (opt->supersample < 1 || opt->supersample > BIREF_MAX_SUPERSAMPLE)
         return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "supersample must be between 1 and 64");
     int world_fixed = scene->polarization.type == BIREF_POL_LINEAR || scene->filter.type == BIREF_FILTER_LINEAR;
-    if (world_fixed && opt->method == BIREF_METHOD_ANALYTIC)
-        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len,
-                       "world-fixed polarizers need --method expansion, numeric or ground-truth (the paper's method "
-                       "handles s/p only)");
     if (opt->method == BIREF_METHOD_EXPANSION && opt->expansion.order < 0 &&
         !(opt->expansion.tolerance > 0.0 && opt->expansion.tolerance < 1.0))
         return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "expansion tolerance must be in (0, 1)");

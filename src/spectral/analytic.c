@@ -16,71 +16,55 @@
 #include <math.h>
 #include <string.h>
 
-#include "spectral/phase_prefilter.h"
-#include "spectral/spectral_internal.h"
-
-typedef struct {
-    double c[3], s[3]; /* S(cos kD), S(sin kD) per band */
-    double att[3];     /* e^{-k_j Im D}: decay of evanescent legs at the band's centroid */
-} phase_int;
-
-/* opd = sum_l n[l] opl_l (legs in biref_opl_footprint order), averaged over the pixel's footprint
- * fp (NULL: point values). */
-static void phase_eval(const biref_spectral *sp, const biref_opl_footprint *fp, double complex opd, const int n[4],
-                       phase_int *p)
-{
-    biref_phase_integrals_footprint(sp, fp, creal(opd), n, p->c, p->s);
-    double im = cimag(opd);
-    for (int j = 0; j < 3; j++) p->att[j] = im != 0.0 ? exp(-sp->k_centroid[j] * im) : 1.0;
-}
-
-/* out_j += weight_j * S(Re(coef e^{ikD}), Λ_j). */
-static inline void add_re_integral(double out[3], const double weight[3], double complex coef, const phase_int *p)
-{
-    double a = creal(coef), b = cimag(coef);
-    for (int j = 0; j < 3; j++) out[j] += weight[j] * p->att[j] * (a * p->c[j] - b * p->s[j]);
-}
+#include "spectral/analytic_terms.h"
 
 static const double ONE[3] = {1.0, 1.0, 1.0};
 
-static inline double abs2(double complex z) { return creal(z) * creal(z) + cimag(z) * cimag(z); }
-
-/* |e^{ik opl}|^2 per band at the band's centroid: 1 for propagating legs. */
-static inline void leg_energy(const biref_spectral *sp, double complex opl, double e[3])
+void biref_transmission_phases(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                               biref_phase_int *h0, biref_phase_int trip[2][2])
 {
-    double im = cimag(opl);
-    for (int j = 0; j < 3; j++) e[j] = im != 0.0 ? exp(-2.0 * sp->k_centroid[j] * im) : 1.0;
-}
-
-/* w (1x2) (I - M)^{-1}. */
-static void row_times_inv_one_minus(const double w[2], const double M[2][2], double out[2])
-{
-    double a = 1.0 - M[0][0], b = -M[0][1], c = -M[1][0], d = 1.0 - M[1][1];
-    double det = a * d - b * c;
-    out[0] = (w[0] * d - w[1] * c) / det;
-    out[1] = (-w[0] * b + w[1] * a) / det;
-}
-
-/* Energy weights of all paths reaching a reflection point, per band (eqs. 20-21):
- * w0[i][m][j] is the first arrival in mode m for input i, Rin/Rout the reflections of one
- * round trip (mode m -> leg mode n via Rin, leg n, then Rout into mode m', leg m'), legs with
- * energies e_mid[n][j], e_end[m'][j]. out[i][m][j] = w0 (I - Dbar_j)^{-1}. */
-static void path_energies(const double w0[2][2][3], const double complex (*Rin)[2], const double e_mid[2][3],
-                          const double complex (*Rout)[2], const double e_end[2][3], double out[2][2][3])
-{
-    for (int j = 0; j < 3; j++) {
-        double Dbar[2][2];
-        for (int m = 0; m < 2; m++)
-            for (int m2 = 0; m2 < 2; m2++)
-                Dbar[m][m2] = (abs2(Rin[m][0]) * e_mid[0][j] * abs2(Rout[0][m2]) +
-                               abs2(Rin[m][1]) * e_mid[1][j] * abs2(Rout[1][m2])) * e_end[m2][j];
-        for (int i = 0; i < 2; i++) {
-            double w[2] = {w0[i][0][j], w0[i][1][j]}, W[2];
-            row_times_inv_one_minus(w, Dbar, W);
-            out[i][0][j] = W[0];
-            out[i][1][j] = W[1];
+    const double complex *od = st->opl_down, *ou = st->opl_up;
+    /* Distinct optical path differences: the order-0 pair (eq. 24) and the four round trips
+     * (bottom reflection into y, up, top reflection into x', down): five table look-ups. */
+    biref_phase_eval(sp, fp, od[1] - conj(od[0]), (const int[4]){-1, 1, 0, 0}, h0);
+    for (int y = 0; y < 2; y++)
+        for (int x2 = 0; x2 < 2; x2++) {
+            int n[4] = {0, 0, 0, 0};
+            n[BIREF_LEG_DOWN_O + x2]++, n[BIREF_LEG_UP_O + y]++;
+            biref_phase_eval(sp, fp, ou[y] + od[x2], n, &trip[y][x2]);
         }
+}
+
+void biref_reflection_phases(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                             biref_phase_int p1[4], biref_phase_int pair[4][4])
+{
+    const double complex *od = st->opl_down, *ou = st->opl_up;
+    /* Order-1 paths a = (down x, up y) = (a >> 1, a & 1): optical paths and pairwise
+     * differences; the same four sums serve as the extra round trip of the descendants. */
+    double complex opl1[4];
+    int legs1[4][4] = {{0}}; /* leg counts of the order-1 paths */
+    for (int a = 0; a < 4; a++) {
+        opl1[a] = od[a >> 1] + ou[a & 1];
+        legs1[a][BIREF_LEG_DOWN_O + (a >> 1)]++, legs1[a][BIREF_LEG_UP_O + (a & 1)]++;
+        biref_phase_eval(sp, fp, opl1[a], legs1[a], &p1[a]);
     }
+    /* Pairs (0,1) and (2,3) differ by the same up-leg difference, (0,2) and (1,3) by the same
+     * down-leg difference: their table values coincide, only the decay of evanescent legs can
+     * differ. Six pairs, four look-ups. */
+    for (int a = 0; a < 4; a++)
+        for (int b = a + 1; b < 4; b++) {
+            double complex d = opl1[b] - conj(opl1[a]);
+            if ((a == 2 && b == 3) || (a == 1 && b == 3)) {
+                const biref_phase_int *twin = a == 2 ? &pair[0][1] : &pair[0][2];
+                pair[a][b] = *twin;
+                for (int j = 0; j < 3; j++)
+                    pair[a][b].att[j] = cimag(d) != 0.0 ? exp(-sp->k_centroid[j] * cimag(d)) : 1.0;
+            } else {
+                int n[4];
+                for (int l = 0; l < 4; l++) n[l] = legs1[b][l] - legs1[a][l];
+                biref_phase_eval(sp, fp, d, n, &pair[a][b]);
+            }
+        }
 }
 
 static void transmission(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
@@ -90,24 +74,16 @@ static void transmission(const biref_spectral *sp, const biref_slab_state *st, c
     const double complex(*r12)[2] = st->bottom.r_down, (*t12)[2] = st->bottom.t_down;
     const double complex *od = st->opl_down, *ou = st->opl_up;
 
-    /* Distinct optical path differences: the order-0 pair (eq. 24) and the four round trips
-     * (bottom reflection into y, up, top reflection into x', down): five table look-ups. */
-    phase_int h0, trip[2][2];
-    phase_eval(sp, fp, od[1] - conj(od[0]), (const int[4]){-1, 1, 0, 0}, &h0);
-    for (int y = 0; y < 2; y++)
-        for (int x2 = 0; x2 < 2; x2++) {
-            int n[4] = {0, 0, 0, 0};
-            n[BIREF_LEG_DOWN_O + x2]++, n[BIREF_LEG_UP_O + y]++;
-            phase_eval(sp, fp, ou[y] + od[x2], n, &trip[y][x2]);
-        }
+    biref_phase_int h0, trip[2][2];
+    biref_transmission_phases(sp, st, fp, &h0, trip);
 
     double ed[2][3], eu[2][3], w0[2][2][3], W[2][2][3];
-    for (int m = 0; m < 2; m++) leg_energy(sp, od[m], ed[m]), leg_energy(sp, ou[m], eu[m]);
+    for (int m = 0; m < 2; m++) biref_leg_energy(sp, od[m], ed[m]), biref_leg_energy(sp, ou[m], eu[m]);
     for (int i = 0; i < 2; i++)
         for (int x = 0; x < 2; x++)
-            for (int j = 0; j < 3; j++) w0[i][x][j] = abs2(t01[i][x]) * ed[x][j];
+            for (int j = 0; j < 3; j++) w0[i][x][j] = biref_abs2(t01[i][x]) * ed[x][j];
     /* W[i][x]: energy of all paths arriving at the bottom in mode x (eq. 21's left part). */
-    path_energies(w0, r12, eu, r10, ed, W);
+    biref_path_energies((const double(*)[2][3])w0, 2, r12, eu, r10, ed, W);
 
     for (int o = 0; o < 2; o++) {
         /* Descendant coefficients (eq. 23, m = 1) do not depend on the input. */
@@ -118,12 +94,12 @@ static void transmission(const biref_spectral *sp, const biref_slab_state *st, c
         for (int i = 0; i < 2; i++) {
             double *h = H[i][o];
             h[0] = h[1] = h[2] = 0.0;
-            for (int j = 0; j < 3; j++) E[i][o][j] = W[i][0][j] * abs2(t12[0][o]) + W[i][1][j] * abs2(t12[1][o]);
+            for (int j = 0; j < 3; j++) E[i][o][j] = W[i][0][j] * biref_abs2(t12[0][o]) + W[i][1][j] * biref_abs2(t12[1][o]);
             /* H0 (eq. 24): the ordinary and the extraordinary order-0 path. */
-            add_re_integral(h, ONE, conj(t01[i][0] * t12[0][o]) * t01[i][1] * t12[1][o], &h0);
+            biref_add_re_integral(h, ONE, conj(t01[i][0] * t12[0][o]) * t01[i][1] * t12[1][o], &h0);
             for (int x = 0; x < 2; x++)
                 for (int y = 0; y < 2; y++)
-                    for (int x2 = 0; x2 < 2; x2++) add_re_integral(h, W[i][x], desc[x][y][x2], &trip[y][x2]);
+                    for (int x2 = 0; x2 < 2; x2++) biref_add_re_integral(h, W[i][x], desc[x][y][x2], &trip[y][x2]);
         }
     }
 }
@@ -136,43 +112,18 @@ static void reflection(const biref_spectral *sp, const biref_slab_state *st, con
     const double complex(*r12)[2] = st->bottom.r_down;
     const double complex *od = st->opl_down, *ou = st->opl_up;
 
-    /* Order-1 paths a = (down x, up y) = (a >> 1, a & 1): optical paths and pairwise
-     * differences; the same four sums serve as the extra round trip of the descendants. */
-    double complex opl1[4];
-    phase_int p1[4], pair[4][4];
-    int legs1[4][4] = {{0}}; /* leg counts of the order-1 paths */
-    for (int a = 0; a < 4; a++) {
-        opl1[a] = od[a >> 1] + ou[a & 1];
-        legs1[a][BIREF_LEG_DOWN_O + (a >> 1)]++, legs1[a][BIREF_LEG_UP_O + (a & 1)]++;
-        phase_eval(sp, fp, opl1[a], legs1[a], &p1[a]);
-    }
-    /* Pairs (0,1) and (2,3) differ by the same up-leg difference, (0,2) and (1,3) by the same
-     * down-leg difference: their table values coincide, only the decay of evanescent legs can
-     * differ. Six pairs, four look-ups. */
-    for (int a = 0; a < 4; a++)
-        for (int b = a + 1; b < 4; b++) {
-            double complex d = opl1[b] - conj(opl1[a]);
-            if ((a == 2 && b == 3) || (a == 1 && b == 3)) {
-                const phase_int *twin = a == 2 ? &pair[0][1] : &pair[0][2];
-                pair[a][b] = *twin;
-                for (int j = 0; j < 3; j++)
-                    pair[a][b].att[j] = cimag(d) != 0.0 ? exp(-sp->k_centroid[j] * cimag(d)) : 1.0;
-            } else {
-                int n[4];
-                for (int l = 0; l < 4; l++) n[l] = legs1[b][l] - legs1[a][l];
-                phase_eval(sp, fp, d, n, &pair[a][b]);
-            }
-        }
+    biref_phase_int p1[4], pair[4][4];
+    biref_reflection_phases(sp, st, fp, p1, pair);
 
     double ed[2][3], eu[2][3], u0[2][2][3], U[2][2][3];
-    for (int m = 0; m < 2; m++) leg_energy(sp, od[m], ed[m]), leg_energy(sp, ou[m], eu[m]);
+    for (int m = 0; m < 2; m++) biref_leg_energy(sp, od[m], ed[m]), biref_leg_energy(sp, ou[m], eu[m]);
     for (int i = 0; i < 2; i++)
         for (int y = 0; y < 2; y++)
             for (int j = 0; j < 3; j++)
-                u0[i][y][j] = (abs2(t01[i][0]) * ed[0][j] * abs2(r12[0][y]) + abs2(t01[i][1]) * ed[1][j] * abs2(r12[1][y])) *
+                u0[i][y][j] = (biref_abs2(t01[i][0]) * ed[0][j] * biref_abs2(r12[0][y]) + biref_abs2(t01[i][1]) * ed[1][j] * biref_abs2(r12[1][y])) *
                               eu[y][j];
     /* U[i][y]: energy of all paths arriving at the top (inside) in up mode y. */
-    path_energies(u0, r10, ed, r12, eu, U);
+    biref_path_energies((const double(*)[2][3])u0, 2, r10, ed, r12, eu, U);
 
     for (int o = 0; o < 2; o++) {
         double complex desc[2][4];
@@ -182,15 +133,15 @@ static void reflection(const biref_spectral *sp, const biref_slab_state *st, con
             double *h = H[i][o];
             h[0] = h[1] = h[2] = 0.0;
             for (int j = 0; j < 3; j++)
-                E[i][o][j] = abs2(r01[i][o]) + U[i][0][j] * abs2(t10[0][o]) + U[i][1][j] * abs2(t10[1][o]);
+                E[i][o][j] = biref_abs2(r01[i][o]) + U[i][0][j] * biref_abs2(t10[0][o]) + U[i][1][j] * biref_abs2(t10[1][o]);
             double complex a1[4]; /* order-1 amplitudes without their phase */
             for (int a = 0; a < 4; a++) a1[a] = t01[i][a >> 1] * r12[a >> 1][a & 1] * t10[a & 1][o];
             for (int a = 0; a < 4; a++) {
-                add_re_integral(h, ONE, conj(r01[i][o]) * a1[a], &p1[a]);
-                for (int b = a + 1; b < 4; b++) add_re_integral(h, ONE, conj(a1[a]) * a1[b], &pair[a][b]);
+                biref_add_re_integral(h, ONE, conj(r01[i][o]) * a1[a], &p1[a]);
+                for (int b = a + 1; b < 4; b++) biref_add_re_integral(h, ONE, conj(a1[a]) * a1[b], &pair[a][b]);
             }
             for (int y = 0; y < 2; y++)
-                for (int a = 0; a < 4; a++) add_re_integral(h, U[i][y], desc[y][a], &p1[a]);
+                for (int a = 0; a < 4; a++) biref_add_re_integral(h, U[i][y], desc[y][a], &p1[a]);
         }
     }
 }
@@ -265,6 +216,12 @@ void biref_analytic_paper_terms(const biref_spectral *sp, const biref_slab_state
                                 double H[2][2][3])
 {
     paper_terms(sp, st, NULL, which, E, H);
+}
+
+void biref_analytic_paper_terms_footprint(const biref_spectral *sp, const biref_slab_state *st,
+                                          const biref_opl_footprint *fp, int which, double E[2][2][3], double H[2][2][3])
+{
+    paper_terms(sp, st, fp, which, E, H);
 }
 
 void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],

@@ -12,15 +12,13 @@
 #include <complex.h>
 #include <math.h>
 
-#include "spectral/spectral_internal.h"
+#include "spectral/analytic_terms.h"
 
 typedef struct {
     double c[3], s[3]; /* S(cos kD), S(sin kD) per band */
     double att[3];     /* e^{-k_j Im D} */
     int zero;          /* beyond the far limit: the integrals are 0 */
 } phase_term;
-
-static inline double abs2(double complex z) { return creal(z) * creal(z) + cimag(z) * cimag(z); }
 
 static void phase_at(const biref_spectral *sp, double complex opd, phase_term *p)
 {
@@ -44,33 +42,6 @@ static inline void add_1(double out[3], double complex coef, const phase_term *p
 {
     double a = creal(coef), b = cimag(coef);
     for (int j = 0; j < 3; j++) out[j] += p->att[j] * (a * p->c[j] - b * p->s[j]);
-}
-
-static inline void leg_energy(const biref_spectral *sp, double complex opl, double e[3])
-{
-    double im = cimag(opl);
-    for (int j = 0; j < 3; j++) e[j] = im != 0.0 ? exp(-2.0 * sp->k_centroid[j] * im) : 1.0;
-}
-
-/* out[i][m][j] = (w0[i] (I - Dbar_j)^{-1})[m], Dbar as in analytic.c's path_energies. */
-static void path_energies(const double w0[2][2][3], const double complex (*Rin)[2], const double e_mid[2][3],
-                          const double complex (*Rout)[2], const double e_end[2][3], double out[2][2][3])
-{
-    double ai[2][2], ao[2][2];
-    for (int m = 0; m < 2; m++)
-        for (int n = 0; n < 2; n++) ai[m][n] = abs2(Rin[m][n]), ao[m][n] = abs2(Rout[m][n]);
-    for (int j = 0; j < 3; j++) {
-        double D[2][2];
-        for (int m = 0; m < 2; m++)
-            for (int m2 = 0; m2 < 2; m2++)
-                D[m][m2] = (ai[m][0] * e_mid[0][j] * ao[0][m2] + ai[m][1] * e_mid[1][j] * ao[1][m2]) * e_end[m2][j];
-        double a = 1.0 - D[0][0], b = -D[0][1], c = -D[1][0], d = 1.0 - D[1][1];
-        double det = a * d - b * c;
-        for (int i = 0; i < 2; i++) {
-            out[i][0][j] = (w0[i][0][j] * d - w0[i][1][j] * c) / det;
-            out[i][1][j] = (-w0[i][0][j] * b + w0[i][1][j] * a) / det;
-        }
-    }
 }
 
 /* E and X = E + 2H (eqs. 19-26) of both directions, [direction][in][out][band]. */
@@ -107,15 +78,15 @@ static void paper_both(const biref_spectral *sp, const biref_slab_state *st, dou
     int any_p1 = !p1[0].zero || !p1[1].zero || !p1[2].zero || !p1[3].zero;
 
     double ed[2][3], eu[2][3];
-    for (int k = 0; k < 2; k++) leg_energy(sp, od[k], ed[k]), leg_energy(sp, ou[k], eu[k]);
+    for (int k = 0; k < 2; k++) biref_leg_energy(sp, od[k], ed[k]), biref_leg_energy(sp, ou[k], eu[k]);
 
     /* Transmission (analytic.c's transmission()). */
     {
         double w0[2][2][3], W[2][2][3];
         for (int i = 0; i < 2; i++)
             for (int x = 0; x < 2; x++)
-                for (int j = 0; j < 3; j++) w0[i][x][j] = abs2(t01[i][x]) * ed[x][j];
-        path_energies(w0, r12, eu, r10, ed, W);
+                for (int j = 0; j < 3; j++) w0[i][x][j] = biref_abs2(t01[i][x]) * ed[x][j];
+        biref_path_energies((const double(*)[2][3])w0, 2, r12, eu, r10, ed, W);
         for (int o = 0; o < 2; o++) {
             double complex desc[2][2][2];
             if (any_p1)
@@ -134,7 +105,7 @@ static void paper_both(const biref_spectral *sp, const biref_slab_state *st, dou
                                 if (!p->zero) add_w(h, W[i][x], desc[x][y][x2], p);
                             }
                 for (int j = 0; j < 3; j++) {
-                    double e = W[i][0][j] * abs2(t12[0][o]) + W[i][1][j] * abs2(t12[1][o]);
+                    double e = W[i][0][j] * biref_abs2(t12[0][o]) + W[i][1][j] * biref_abs2(t12[1][o]);
                     E[BIREF_TRANSMISSION][i][o][j] = e;
                     X[BIREF_TRANSMISSION][i][o][j] = e + 2.0 * h[j]; /* eqs. 25-26 */
                 }
@@ -149,9 +120,9 @@ static void paper_both(const biref_spectral *sp, const biref_slab_state *st, dou
             for (int y = 0; y < 2; y++)
                 for (int j = 0; j < 3; j++)
                     u0[i][y][j] =
-                        (abs2(t01[i][0]) * ed[0][j] * abs2(r12[0][y]) + abs2(t01[i][1]) * ed[1][j] * abs2(r12[1][y])) *
+                        (biref_abs2(t01[i][0]) * ed[0][j] * biref_abs2(r12[0][y]) + biref_abs2(t01[i][1]) * ed[1][j] * biref_abs2(r12[1][y])) *
                         eu[y][j];
-        path_energies(u0, r10, ed, r12, eu, U);
+        biref_path_energies((const double(*)[2][3])u0, 2, r10, ed, r12, eu, U);
         for (int o = 0; o < 2; o++) {
             double complex desc[2][4];
             if (any_p1)
@@ -172,7 +143,7 @@ static void paper_both(const biref_spectral *sp, const biref_slab_state *st, dou
                         for (int a = 0; a < 4; a++)
                             if (!p1[a].zero) add_w(h, U[i][y], desc[y][a], &p1[a]);
                 for (int j = 0; j < 3; j++) {
-                    double e = abs2(r01[i][o]) + U[i][0][j] * abs2(t10[0][o]) + U[i][1][j] * abs2(t10[1][o]);
+                    double e = biref_abs2(r01[i][o]) + U[i][0][j] * biref_abs2(t10[0][o]) + U[i][1][j] * biref_abs2(t10[1][o]);
                     E[BIREF_REFLECTION][i][o][j] = e;
                     X[BIREF_REFLECTION][i][o][j] = e + 2.0 * h[j];
                 }

@@ -8,6 +8,7 @@
 #include "biref/integrator.h"
 #include "error.h"
 #include "optics/slab_internal.h"
+#include "spectral/analytic_terms.h"
 #include "spectral/integrator_internal.h"
 #include "spectral/phase_prefilter.h"
 #include "spectral/spectral_internal.h"
@@ -41,11 +42,17 @@ void biref_integrator_options_default(biref_integrator_options *o)
 }
 
 /* The analytic method per side: eq. 25, S = E + 2H, for the one side asked (half the work of
- * biref_spectrum_analytic), with the paper's light folded into the sums (analytic_mixed.c). */
+ * biref_spectrum_analytic), with the paper's light folded into the sums (analytic_mixed.c); any
+ * other light through the general coherency/analyzer terms (analytic_general.c). */
 static biref_status side_analytic(const biref_integrator *it, const biref_slab_state *st,
                                   const biref_opl_footprint *fp, int which,
                                   const biref_light *l, double xyz[3], int *order_used)
 {
+    if (!l->sp_model) {
+        biref_analytic_general(it->sp, st, fp, which, (const double complex(*)[2])l->C,
+                               l->has_analyzer ? (const double complex(*)[2])l->P : NULL, xyz);
+        return BIREF_OK;
+    }
     if (fp) {
         /* Prefiltered phase integrals: eq. 25 per pair with the averaged look-ups, then mixed. */
         double E[2][2][3], H[2][2][3], X[2][2][3];
@@ -170,7 +177,6 @@ biref_status biref_integrate_footprint(const biref_integrator *it, const biref_s
 {
     out->order_used[0] = out->order_used[1] = -1;
     if (!(sides & BIREF_SIDE_BOTH) || (sides & ~BIREF_SIDE_BOTH)) return BIREF_ERR_INVALID;
-    if (it->method == BIREF_METHOD_ANALYTIC && !light->sp_model) return BIREF_ERR_INVALID;
     if (it->plan && light->sp_model && sides == BIREF_SIDE_BOTH) {
         /* Both sides of the paper's light: one pass over the wavelengths gives all four pairs of
          * both, cheaper than two polarized passes (one Jones evaluation per wavelength). */

@@ -63,9 +63,6 @@ def zero_thickness(scene):
 MESSAGES = [
     ("SCENES.md", "biref render: error: scene.json: slabs[0].thickness_mm: must be positive", zero_thickness,
      ["render", "scene.json", "-o", "out.png"]),
-    ("SCENES.md", "world-fixed polarizers need --method expansion, numeric or ground-truth (the paper's method "
-     "handles s/p only)", None,
-     ["render", os.path.join(ROOT, "examples", "fig9c_analyzer45.json"), "-o", "out.png", "--method", "analytic"]),
 ]
 
 

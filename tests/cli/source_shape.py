@@ -36,10 +36,8 @@ MAX_FUNCTION_LINES = 120
 # stays the list of offenders); never raise a number.
 ALLOWED_FILES = {
     # path under src/: lines
-    "spectral/expansion.c": 893,
     "spectral/analytic_packet_kernel.inc": 858,
     "photoelastic/mesh.c": 772,
-    "render/scene.c": 741,
 }
 ALLOWED_FUNCTIONS = {
     # (path under src/, function): lines from its opening to its closing brace

@@ -37,7 +37,6 @@ MAX_FUNCTION_LINES = 120
 ALLOWED_FILES = {
     # path under src/: lines
     "spectral/analytic_packet_kernel.inc": 858,
-    "photoelastic/mesh.c": 772,
 }
 ALLOWED_FUNCTIONS = {
     # (path under src/, function): lines from its opening to its closing brace

@@ -340,6 +340,8 @@ const cli_command_spec CLI_FIGURE = {
     "  table1   time per 1920x1080 frame of each method on examples/fig9a.json\n"
     "  aliasing plain, prefiltered (--antialias) and 4x4 super-sampled renders of scenes made\n"
     "           to alias against a 32x32 super-sampled reference, with dE00 maps and costs\n"
+    "  dispersion  five crystal plates over 0-70 deg, exact, with the indices fixed at 550 nm\n"
+    "           and with n(lambda): colours side by side, dE00 between them (docs/MATERIALS.md)\n"
     "  all      everything above\n\n"
     "Options:\n",
     OPTS,
@@ -362,17 +364,21 @@ int cmd_figure(int argc, char **argv)
     c.threads = (int)a.threads;
     const char *scenes = a.scenes;
     const int first_arg = p.first_arg;
-    if (first_arg >= argc) return cli_error(FIG_CMD, "missing figure name (fig5, fig6c, fig7, fig9, table1, aliasing or all)"), CLI_EXIT_USAGE;
+    if (first_arg >= argc)
+        return cli_error(FIG_CMD, "missing figure name (fig5, fig6c, fig7, fig9, table1, aliasing, dispersion or all)"),
+               CLI_EXIT_USAGE;
     if (first_arg + 1 < argc) return cli_error(FIG_CMD, "unexpected argument '%s'", argv[first_arg + 1]), CLI_EXIT_USAGE;
     const char *name = argv[first_arg];
     char default_scenes[4096];
     if (!scenes) scenes = cli_data_path("examples", default_scenes, sizeof default_scenes);
-    static const char *const NAMES[] = {"fig5", "fig6c", "fig7", "fig9", "table1", "aliasing"};
-    enum { NFIG = 6 };
+    static const char *const NAMES[] = {"fig5", "fig6c", "fig7", "fig9", "table1", "aliasing", "dispersion"};
+    enum { NFIG = 7 };
     int sel[NFIG] = {0}, any = 0;
     for (int i = 0; i < NFIG; i++) any |= sel[i] = !strcmp(name, NAMES[i]) || !strcmp(name, "all");
     if (!any)
-        return cli_error(FIG_CMD, "unknown figure '%s' (expected fig5, fig6c, fig7, fig9, table1, aliasing or all)", name),
+        return cli_error(FIG_CMD,
+                         "unknown figure '%s' (expected fig5, fig6c, fig7, fig9, table1, aliasing, dispersion or all)",
+                         name),
                CLI_EXIT_USAGE;
     if (!c.dir) return cli_error(FIG_CMD, "missing -o DIR"), CLI_EXIT_USAGE;
     /* Everything the figures read is checked before the first one is computed. */
@@ -398,7 +404,8 @@ int cmd_figure(int argc, char **argv)
         case 2: rc = fig7(&c); break;
         case 3: rc = fig9(&c, scenes); break;
         case 4: rc = table1(&c, scenes); break;
-        default: rc = fig_aliasing(c.dir, scenes, c.quick, c.threads); break;
+        case 5: rc = fig_aliasing(c.dir, scenes, c.quick, c.threads); break;
+        default: rc = fig_dispersion(&c); break;
         }
         if (rc == CLI_EXIT_OK) fprintf(stderr, "biref figure: %s done in %.1f s\n", NAMES[i], biref_wall_seconds() - t0);
     }

@@ -50,5 +50,7 @@ int fig_cmp_double(const void *a, const void *b);
 int fig5(const fig_ctx *c);
 int fig6c(const fig_ctx *c);
 int fig7(const fig_ctx *c);
+/* The error of ignoring dispersion (fig_dispersion.c). */
+int fig_dispersion(const fig_ctx *c);
 
 #endif

@@ -61,52 +61,40 @@ static void test_packet_eligible_unless_total_reflection_or_coherent_regime(void
     biref_spectral_destroy(sp);
 }
 
-/* Every kernel against biref_analytic_mixed of the same (flipped) state, both directions, under
- * random s/p lights, within 1e-12 in band-normalised XYZ: the kernels round differently (FMA,
- * sums regrouped) and take two of the order-1 pairs' path differences with fewer roundings
- * (analytic_packet_kernel.inc, look_values), ~5e-14 here. */
-static void test_kernels_vs_scalar(void)
+/* An unknown or unsupported BIREF_SIMD is refused by biref_integrator_create with one line
+ * naming the accepted values, for every method; a known one is taken; unset or empty: automatic. */
+static void unknown_simd_value_is_refused(void)
 {
     biref_spectral *sp = NULL;
     CHECK(biref_spectral_create(NULL, &sp, NULL, 0) == BIREF_OK);
-    enum { N = 203 }; /* not a multiple of the lane count: spare lanes are exercised */
-    static biref_slab_state states[N];
-    static biref_packet_job jobs[4 * N];
-    static double want[4 * N][3], got[4 * N][3];
-    test_rng rng = {0x51d0u};
-    double w_in[2] = {0.75, 0.25}, mask[2] = {1.0, 0.3};
-    size_t n = 0;
-    while (n < N) {
-        biref_slab s;
-        double theta;
-        random_slab(&rng, (int)n, &s, &theta);
-        if (biref_slab_prepare(&s, theta, &states[n]) != BIREF_OK) continue;
-        if (!biref_packet_eligible(sp, &states[n])) continue;
-        n++;
-    }
-    size_t nj = 0;
-    for (size_t k = 0; k < n; k++)
-        for (int f = 0; f < 2; f++)
-            for (int w = 0; w < 2; w++) {
-                jobs[nj] = (biref_packet_job){&states[k], (unsigned char)f, (unsigned char)w};
-                biref_slab_state fl;
-                biref_slab_state_flip(&states[k], &fl);
-                biref_analytic_mixed(sp, f ? &fl : &states[k], w, w_in, mask, want[nj]);
-                nj++;
-            }
-    for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
-        if (!biref_simd_isa_supported((biref_simd_isa)isa)) {
-            printf("%s: not supported by this CPU, not tested\n", biref_simd_isa_name((biref_simd_isa)isa));
-            continue;
+    biref_integrator_options o;
+    biref_integrator_options_default(&o);
+    biref_integrator *it = NULL;
+    char msg[256] = "";
+    const char *bad[] = {"avx9", "AVX2", "sse2", " baseline"};
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++)
+        for (int m = 0; m < 2; m++) {
+            o.method = m ? BIREF_METHOD_EXPANSION : BIREF_METHOD_ANALYTIC;
+            setenv("BIREF_SIMD", bad[k], 1);
+            CHECK(biref_integrator_create(sp, &o, &it, msg, sizeof msg) == BIREF_ERR_INVALID && !it);
+            CHECK(strstr(msg, "expected scalar, baseline, avx2 or avx512") != NULL && !strchr(msg, '\n'));
         }
-        memset(got, 0, sizeof got);
-        biref_simd_kernel((biref_simd_isa)isa)(sp, w_in, mask, jobs, nj, got);
-        double worst = 0.0;
-        for (size_t j = 0; j < nj; j++)
-            for (int b = 0; b < 3; b++) worst = fmax(worst, fabs(got[j][b] - want[j][b]));
-        printf("%s: %zu lanes, max |packet - scalar| = %.3g\n", biref_simd_isa_name((biref_simd_isa)isa), nj, worst);
-        CHECK(worst < 1e-12);
+    o.method = BIREF_METHOD_ANALYTIC;
+    for (int isa = 0; isa < BIREF_SIMD_COUNT; isa++) {
+        setenv("BIREF_SIMD", biref_simd_isa_name((biref_simd_isa)isa), 1);
+        biref_status s = biref_integrator_create(sp, &o, &it, msg, sizeof msg);
+        if (biref_simd_isa_supported((biref_simd_isa)isa)) {
+            CHECK(s == BIREF_OK && biref_integrator_simd(it) == (biref_simd_isa)isa);
+        } else {
+            CHECK(s == BIREF_ERR_INVALID && strstr(msg, "this CPU cannot run it") != NULL);
+        }
+        biref_integrator_destroy(it);
+        it = NULL;
     }
+    setenv("BIREF_SIMD", "", 1);
+    CHECK(biref_integrator_create(sp, &o, &it, NULL, 0) == BIREF_OK && it);
+    biref_integrator_destroy(it);
+    unsetenv("BIREF_SIMD");
     biref_spectral_destroy(sp);
 }
 
@@ -331,7 +319,7 @@ int main(int argc, char **argv)
     static const test_case cases[] = {
         {"packet_eligible_unless_total_reflection_or_coherent_regime",
          test_packet_eligible_unless_total_reflection_or_coherent_regime},
-        {"kernels_vs_scalar_worker", test_kernels_vs_scalar},
+        {"unknown_simd_value_is_refused", unknown_simd_value_is_refused},
         {"hit_kernels_vs_scalar_set_up", test_hit_kernels_vs_scalar},
         {"prefiltered_hit_kernels_vs_scalar", prefiltered_hit_kernels_vs_scalar},
         {"renders_per_isa_vs_scalar", test_renders_per_isa},

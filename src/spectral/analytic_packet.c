@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "error.h"
 #include "spectral/analytic_packet.h"
 #include "spectral/spectral_internal.h"
 
@@ -29,25 +30,34 @@ int biref_simd_isa_supported(biref_simd_isa isa)
     }
 }
 
-biref_simd_isa biref_simd_isa_choose(void)
+static biref_simd_isa fastest(void)
 {
-    const char *want = getenv("BIREF_SIMD");
-    if (want)
-        for (int i = 0; i < BIREF_SIMD_COUNT; i++)
-            if (!strcmp(want, ISA_NAMES[i]) && biref_simd_isa_supported((biref_simd_isa)i)) return (biref_simd_isa)i;
     for (int i = BIREF_SIMD_COUNT - 1; i > BIREF_SIMD_SCALAR; i--)
         if (biref_simd_isa_supported((biref_simd_isa)i)) return (biref_simd_isa)i;
     return BIREF_SIMD_SCALAR;
 }
 
-biref_packet_kernel biref_simd_kernel(biref_simd_isa isa)
+biref_status biref_simd_isa_pick(biref_simd_isa *out, char *msg, size_t msg_len)
 {
-    switch (isa) {
-    case BIREF_SIMD_BASELINE: return biref_packet_analytic_baseline;
-    case BIREF_SIMD_AVX2: return biref_packet_analytic_avx2;
-    case BIREF_SIMD_AVX512: return biref_packet_analytic_avx512;
-    default: return NULL;
+    *out = fastest();
+    const char *want = getenv("BIREF_SIMD");
+    if (!want || !*want) return BIREF_OK;
+    for (int i = 0; i < BIREF_SIMD_COUNT; i++) {
+        if (strcmp(want, ISA_NAMES[i])) continue;
+        if (!biref_simd_isa_supported((biref_simd_isa)i))
+            return biref_fail(msg, msg_len, "BIREF_SIMD=%s: this CPU cannot run it (it runs scalar, baseline%s%s)",
+                              want, biref_simd_isa_supported(BIREF_SIMD_AVX2) ? ", avx2" : "",
+                              biref_simd_isa_supported(BIREF_SIMD_AVX512) ? ", avx512" : "");
+        *out = (biref_simd_isa)i;
+        return BIREF_OK;
     }
+    return biref_fail(msg, msg_len, "BIREF_SIMD=%.40s: expected scalar, baseline, avx2 or avx512", want);
+}
+
+biref_simd_isa biref_simd_isa_choose(void)
+{
+    biref_simd_isa isa;
+    return biref_simd_isa_pick(&isa, NULL, 0) == BIREF_OK ? isa : fastest();
 }
 
 static int real_matrix(const biref_complex (*m)[2])

@@ -1,4 +1,4 @@
-/* The analytic method's packet kernel: many slab states shaded at once in SIMD lanes.
+/* The analytic method's packet kernel: many slab hits shaded at once in SIMD lanes.
  *
  * Without an evanescent mode (a slab in a surround no denser than itself, every slab of the
  * renderer in air) the mode fields, interface coefficients and optical paths of a state are
@@ -9,9 +9,12 @@
  * in the coherent regime or with any complex coefficient are not eligible and stay on the
  * scalar path.
  *
- * One source, analytic_packet_kernel.inc, is compiled once per instruction set (a portable
- * baseline, AVX2 + FMA, AVX-512); the integrator picks one at creation from what the CPU
- * supports, or from the environment variable BIREF_SIMD (baseline, avx2, avx512, scalar). */
+ * One source, analytic_packet_kernel.inc (the algorithm by stage in packet_*.inc, the vector
+ * primitives of each instruction set in simd/<isa>.h), is compiled once per instruction set (a
+ * portable baseline, AVX2 + FMA, AVX-512: analytic_packet_<isa>.c, each with its set's compiler
+ * flags, the one per-ISA mechanism of the library, CMakeLists.txt biref_isa_object); the
+ * integrator picks one at creation from what the CPU supports, or from the environment variable
+ * BIREF_SIMD (baseline, avx2, avx512, scalar; any other value is refused). */
 #ifndef BIREF_ANALYTIC_PACKET_H
 #define BIREF_ANALYTIC_PACKET_H
 
@@ -20,19 +23,6 @@
 #include "biref/optics.h"
 #include "biref/spectral.h"
 #include "spectral/phase_prefilter.h"
-
-/* One lane's job: the state, whether to read it lit from its other face (biref_slab_state_flip's
- * relabelling, done while gathering) and which direction's result to return. */
-typedef struct {
-    const biref_slab_state *st;
-    unsigned char flip;
-    unsigned char which; /* BIREF_TRANSMISSION or BIREF_REFLECTION */
-} biref_packet_job;
-
-/* xyz[k] = biref_analytic_mixed(sp, job k's state (flipped if asked), which, w_in, mask), up
- * to rounding, for n eligible jobs. */
-typedef void (*biref_packet_kernel)(const biref_spectral *sp, const double w_in[2], const double mask[2],
-                                    const biref_packet_job *jobs, size_t n, double (*xyz)[3]);
 
 /* One renderer hit: a checked slab (its axis normalised in the kernel; one far from length 1 is
  * left to the scalar path) seen at incidence parameter K = eta_i sin theta.
@@ -62,13 +52,6 @@ void biref_packet_hits_avx512(const biref_spectral *sp, const double w_in[2], co
                               const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
                               unsigned char *scalar, const biref_opl_footprint *fp);
 
-void biref_packet_analytic_baseline(const biref_spectral *sp, const double w_in[2], const double mask[2],
-                                    const biref_packet_job *jobs, size_t n, double (*xyz)[3]);
-void biref_packet_analytic_avx2(const biref_spectral *sp, const double w_in[2], const double mask[2],
-                                const biref_packet_job *jobs, size_t n, double (*xyz)[3]);
-void biref_packet_analytic_avx512(const biref_spectral *sp, const double w_in[2], const double mask[2],
-                                  const biref_packet_job *jobs, size_t n, double (*xyz)[3]);
-
 /* The instruction sets, fastest last. */
 typedef enum {
     BIREF_SIMD_SCALAR = 0, /* no packets: every state through the scalar worker */
@@ -81,12 +64,16 @@ typedef enum {
 const char *biref_simd_isa_name(biref_simd_isa isa);
 /* Can this CPU run the path? */
 int biref_simd_isa_supported(biref_simd_isa isa);
-/* The path the integrator uses: BIREF_SIMD from the environment if set to a supported name
- * (an unknown or unsupported name falls back to the automatic choice), else the fastest one
- * the CPU supports. */
+/* The path the integrator uses: BIREF_SIMD from the environment when set (and not empty), else
+ * the fastest one the CPU supports. BIREF_ERR_INVALID for a name that is not one of scalar,
+ * baseline, avx2, avx512 or one this CPU cannot run, with one line in msg naming the accepted
+ * values: biref_integrator_create refuses such a value (no silent replacement). */
+biref_status biref_simd_isa_pick(biref_simd_isa *out, char *msg, size_t msg_len);
+/* biref_simd_isa_pick's choice, or the CPU's fastest where it fails (for the renderer's tiles,
+ * whose integrator was created first and so has refused a bad BIREF_SIMD already; they should
+ * rather take biref_integrator_simd of their integrator). */
 biref_simd_isa biref_simd_isa_choose(void);
-/* The kernel of a path (NULL for BIREF_SIMD_SCALAR). */
-biref_packet_kernel biref_simd_kernel(biref_simd_isa isa);
+/* The hit kernel of a path (NULL for BIREF_SIMD_SCALAR). */
 biref_packet_hits_kernel biref_simd_hits_kernel(biref_simd_isa isa);
 
 /* Can the packet kernel take this state? Real coefficients and paths (no evanescent mode) and

@@ -1,7 +1,6 @@
 /* The packet kernel for AVX-512F: 8 lanes of double. Compiled with -mavx512f -mavx2 -mfma and
  * contracted multiply-adds (CMakeLists.txt); called only when the CPU has AVX-512F
  * (analytic_packet.c). */
-#define PACKET_W 8
-#define PACKET_FN biref_packet_analytic_avx512
+#include "spectral/simd/avx512.h"
 #define PACKET_HITS_FN biref_packet_hits_avx512
 #include "spectral/analytic_packet_kernel.inc"

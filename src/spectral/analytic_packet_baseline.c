@@ -1,5 +1,4 @@
 /* The packet kernel for any x86-64 (or other) CPU: 4 lanes of double in generic vector code. */
-#define PACKET_W 4
-#define PACKET_FN biref_packet_analytic_baseline
+#include "spectral/simd/baseline.h"
 #define PACKET_HITS_FN biref_packet_hits_baseline
 #include "spectral/analytic_packet_kernel.inc"

@@ -17,21 +17,23 @@
 typedef biref_status (*side_worker)(const biref_integrator *it, const biref_slab_state *st, const biref_opl_footprint *fp,
                                     int which, const biref_light *l, double xyz[3], int *order_used);
 
-/* A packet of states: the place for vectorised or GPU workers (scalar_batch loops). */
-typedef biref_status (*batch_worker)(const biref_integrator *it, const biref_slab_state *states, size_t n,
-                                     biref_sides sides, const biref_light *lights, size_t light_stride,
-                                     biref_integration *out, biref_status *status);
-
+/* Where the next media plug in. Today the medium at a hit is one slab of constant indices (a
+ * prepared biref_slab_state) and the worker is picked per method at creation (side, hits). A
+ * dispersive material (wavelength-dependent indices: numeric_dispersive.c prepares the slab per
+ * sample wavelength, biref_integrate_material) and a stack of layers are further kinds of medium:
+ * each gets its workers per method here, picked at creation by (method, medium kind) next to the
+ * ones below, so that the per-sample call never switches on the medium and the renderer, shader
+ * and photoelastic callers keep one door (biref_integrate_hit / biref_integrate_packet_hits taking
+ * "the medium at a hit"); a method without a worker for a kind says so once, at creation (today
+ * biref_integrate_material refuses the closed-form methods on every call). */
 struct biref_integrator {
     const biref_spectral *sp;
     biref_method method;
     biref_expansion_opts xopts;
     biref_numeric_plan *plan; /* numeric methods */
     side_worker side;
-    batch_worker batch;
     biref_simd_isa isa;          /* analytic: the packet kernel's instruction set, picked at creation */
-    biref_packet_kernel packet;  /* NULL: no packets */
-    biref_packet_hits_kernel hits;
+    biref_packet_hits_kernel hits; /* NULL: no packets */
 };
 
 void biref_integrator_options_default(biref_integrator_options *o)
@@ -86,14 +88,6 @@ static biref_status side_expansion(const biref_integrator *it, const biref_slab_
     return s;
 }
 
-static biref_status scalar_batch(const biref_integrator *it, const biref_slab_state *states, size_t n,
-                                 biref_sides sides, const biref_light *lights, size_t light_stride,
-                                 biref_integration *out, biref_status *status);
-
-static biref_status packet_batch(const biref_integrator *it, const biref_slab_state *states, size_t n,
-                                 biref_sides sides, const biref_light *lights, size_t light_stride,
-                                 biref_integration *out, biref_status *status);
-
 static biref_status check_options(const biref_integrator_options *o, char *msg, size_t msg_len)
 {
     switch (o->method) {
@@ -124,19 +118,19 @@ biref_status biref_integrator_create(const biref_spectral *sp, const biref_integ
     if (!sp || !o) return biref_fail(msg, msg_len, "no spectral context or options");
     biref_status s = check_options(o, msg, msg_len);
     if (s != BIREF_OK) return s;
+    biref_simd_isa isa;
+    s = biref_simd_isa_pick(&isa, msg, msg_len); /* an unknown BIREF_SIMD is refused, whatever the method */
+    if (s != BIREF_OK) return s;
     biref_integrator *it = calloc(1, sizeof *it);
     if (!it) return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
     it->sp = sp;
     it->method = o->method;
     it->xopts = o->expansion;
-    it->batch = scalar_batch;
     switch (o->method) {
     case BIREF_METHOD_ANALYTIC:
         it->side = side_analytic;
-        it->isa = biref_simd_isa_choose();
-        it->packet = biref_simd_kernel(it->isa);
-        it->hits = biref_simd_hits_kernel(it->isa);
-        if (it->packet) it->batch = packet_batch;
+        it->isa = isa;
+        it->hits = biref_simd_hits_kernel(isa);
         break;
     case BIREF_METHOD_EXPANSION: it->side = side_expansion; break;
     default:
@@ -196,19 +190,6 @@ biref_status biref_integrate_footprint(const biref_integrator *it, const biref_s
     return BIREF_OK;
 }
 
-static biref_status scalar_batch(const biref_integrator *it, const biref_slab_state *states, size_t n,
-                                 biref_sides sides, const biref_light *lights, size_t light_stride,
-                                 biref_integration *out, biref_status *status)
-{
-    biref_status first = BIREF_OK;
-    for (size_t i = 0; i < n; i++) {
-        biref_status s = biref_integrate(it, &states[i], sides, &lights[i * light_stride], &out[i]);
-        if (status) status[i] = s;
-        if (s != BIREF_OK && first == BIREF_OK) first = s;
-    }
-    return first;
-}
-
 biref_status biref_integrate_spectrum(const biref_integrator *it, const biref_slab_state *st, biref_spectrum *out)
 {
     biref_status s = BIREF_OK;
@@ -225,69 +206,19 @@ biref_status biref_integrate_spectrum(const biref_integrator *it, const biref_sl
     return BIREF_OK;
 }
 
+biref_simd_isa biref_integrator_simd(const biref_integrator *it) { return it->isa; }
+
+/* One state at a time (the renderer's packets go through biref_integrate_packet_hits). */
 biref_status biref_integrate_batch(const biref_integrator *it, const biref_slab_state *states, size_t n,
                                    biref_sides sides, const biref_light *lights, size_t light_stride,
                                    biref_integration *out, biref_status *status)
 {
     if (light_stride > 1) return BIREF_ERR_INVALID;
-    return it->batch(it, states, n, sides, lights, light_stride, out, status);
-}
-
-biref_simd_isa biref_integrator_simd(const biref_integrator *it) { return it->isa; }
-
-/* Jobs per kernel call: a few packets of the widest kernel, small enough for the stack. */
-#define PACKET_CHUNK 64
-
-/* The packet kernel's jobs of up to PACKET_CHUNK states (two sides each) and whose they are. */
-typedef struct {
-    biref_packet_job jobs[2 * PACKET_CHUNK];
-    size_t owner[2 * PACKET_CHUNK], n;
-    double xyz[2 * PACKET_CHUNK][3];
-} packet_chunk;
-
-static void chunk_add(packet_chunk *c, const biref_slab_state *st, int flip, int which, size_t owner)
-{
-    c->jobs[c->n] = (biref_packet_job){st, (unsigned char)flip, (unsigned char)which};
-    c->owner[c->n++] = owner;
-}
-
-/* The packet kernel's results are checked like biref_integrate's. */
-static biref_status packet_result(const double xyz[3], double dst[3])
-{
-    memcpy(dst, xyz, 3 * sizeof(double));
-    return finite3(xyz) ? BIREF_OK : BIREF_ERR_ILLCOND;
-}
-
-static biref_status packet_batch(const biref_integrator *it, const biref_slab_state *states, size_t n,
-                                 biref_sides sides, const biref_light *lights, size_t light_stride,
-                                 biref_integration *out, biref_status *status)
-{
-    if (light_stride != 0 || !lights->sp_model || !(sides & BIREF_SIDE_BOTH) || (sides & ~BIREF_SIDE_BOTH))
-        return scalar_batch(it, states, n, sides, lights, light_stride, out, status);
     biref_status first = BIREF_OK;
-    packet_chunk c;
-    for (size_t k0 = 0; k0 < n; k0 += PACKET_CHUNK) {
-        c.n = 0;
-        for (size_t k = k0; k < n && k < k0 + PACKET_CHUNK; k++) {
-            biref_status s = BIREF_OK;
-            if (biref_packet_eligible(it->sp, &states[k])) {
-                out[k].order_used[0] = out[k].order_used[1] = -1;
-                if (sides & BIREF_SIDE_TRANSMISSION) chunk_add(&c, &states[k], 0, BIREF_TRANSMISSION, k);
-                if (sides & BIREF_SIDE_REFLECTION) chunk_add(&c, &states[k], 0, BIREF_REFLECTION, k);
-            } else {
-                s = biref_integrate(it, &states[k], sides, lights, &out[k]);
-            }
-            if (status) status[k] = s;
-            if (s != BIREF_OK && first == BIREF_OK) first = s;
-        }
-        it->packet(it->sp, lights->w_in, lights->mask, c.jobs, c.n, c.xyz);
-        for (size_t j = 0; j < c.n; j++) {
-            size_t k = c.owner[j];
-            biref_status s = packet_result(c.xyz[j], c.jobs[j].which ? out[k].R : out[k].T);
-            if (s == BIREF_OK) continue;
-            if (status) status[k] = s;
-            if (first == BIREF_OK) first = s;
-        }
+    for (size_t i = 0; i < n; i++) {
+        biref_status s = biref_integrate(it, &states[i], sides, &lights[i * light_stride], &out[i]);
+        if (status) status[i] = s;
+        if (s != BIREF_OK && first == BIREF_OK) first = s;
     }
     return first;
 }

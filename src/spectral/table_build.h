@@ -18,13 +18,13 @@ static inline double complex biref_table_accumulate(double *rows, int count, con
     for (int m = 0; m < count; m++) {
         double *row = rows + (size_t)m * 12;
         const double complex zd = dz * z;
-        const pair v = {creal(z), cimag(z)}, vd = {creal(zd), cimag(zd)};
+        const pair v = {creal(z), cimag(z)}, v_d = {creal(zd), cimag(zd)};
         for (int j = 0; j < 3; j++) {
             pair a, b;
             __builtin_memcpy(&a, row + 4 * j, sizeof a);
             __builtin_memcpy(&b, row + 4 * j + 2, sizeof b);
             a += w2[j] * v;
-            b += w2[j] * vd;
+            b += w2[j] * v_d;
             __builtin_memcpy(row + 4 * j, &a, sizeof a);
             __builtin_memcpy(row + 4 * j + 2, &b, sizeof b);
         }

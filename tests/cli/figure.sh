@@ -19,6 +19,16 @@ for f in fig5.png fig6c.png; do
   fi
 done
 
+# The error of ignoring dispersion: the thin rutile plate between crossed filters changes colour
+# visibly (mean dE00 well above 1), the numbers and the picture are written.
+expect_ok "dispersion quick" figure dispersion -o "$out" --quick
+for f in dispersion.png dispersion.csv dispersion_summary.csv; do
+  [ -s "$out/$f" ] || { echo "FAIL: $f missing or empty"; fails=$((fails + 1)); }
+done
+awk -F, '$1 == "rutile 10 µm" && $2 == "crossed s/p" && $3 == "T" { found = 1; if ($4 < 5) exit 1 }
+         END { if (!found) exit 1 }' "$out/dispersion_summary.csv" ||
+  { echo "FAIL (dispersion: rutile crossed T should differ by dE00 > 5 on average)"; fails=$((fails + 1)); }
+
 expect_error "unknown figure" figure fig42 -o "$out"
 expect_error "missing figure name" figure -o "$out"
 expect_error "missing -o" figure fig5 --quick

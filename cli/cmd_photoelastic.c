@@ -362,7 +362,12 @@ static void print_profile(const pe_args *a, const pe_run *run)
 
 int cmd_photoelastic(int argc, char **argv)
 {
-    if (argc > 1 && !strcmp(argv[1], "demodulate")) return cmd_photoelastic_demodulate(argc - 1, argv + 1);
+    if (argc > 1 && !strcmp(argv[1], "calibrate")) return cmd_photoelastic_calibrate(argc - 1, argv + 1);
+    if (argc > 1 && !strcmp(argv[1], "demodulate")) {
+        for (int i = 2; i < argc; i++)
+            if (!strcmp(argv[i], "--tfp") || !strncmp(argv[i], "--tfp=", 6)) return cmd_photoelastic_tfp(argc - 1, argv + 1);
+        return cmd_photoelastic_demodulate(argc - 1, argv + 1);
+    }
     pe_args a;
     int r = pe_args_parse(argc, argv, &a);
     if (r) return r > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;

@@ -75,5 +75,8 @@ int pe_ext_write_png(const pe_ext *e, const pe_ext_ctx *c, const unsigned char *
 void pe_ext_json(const pe_ext *e, cJSON *root);
 
 int cmd_photoelastic_demodulate(int argc, char **argv);
+/* biref photoelastic calibrate; biref photoelastic demodulate --tfp (photoelastic_tfp.c). */
+int cmd_photoelastic_calibrate(int argc, char **argv);
+int cmd_photoelastic_tfp(int argc, char **argv);
 
 #endif

@@ -455,6 +455,42 @@ BIREF_API biref_status biref_pe_demodulate(int n, const float *const images[], i
                                  size_t msg_len);
 
 
+/* ------------------------------------------------------------------------ */
+/* Fringe orders from one white-light colour picture (TFP)                   */
+/* ------------------------------------------------------------------------ */
+
+/* A camera's spectral sensitivities: n wavelengths (nm, rising) and their R, G, B responses. */
+typedef struct {
+    size_t n;
+    const double *lambda_nm;
+    const double *rgb; /* [n][3] */
+} biref_pe_camera;
+
+/* The colour the camera records through polariscope s (its light is white, illuminant E) at each
+ * fringe order orders[k] (N at lambda_ref_nm, like the maps' white-light N): rgb[3k..3k+2]. cam
+ * NULL: an sRGB camera — biref's analytic white-light integration over the CIE 1931 observer and
+ * the encoded sRGB of the pictures (sp needed); else linear camera RGB, the intensity integrated
+ * over the sensitivities (trapezoids) and normalised to 1 for an unattenuated beam. */
+BIREF_API biref_status biref_pe_tfp_calibrate(const biref_pe_setup *s, const biref_spectral *sp,
+                                              const biref_pe_camera *cam, double lambda_ref_nm, size_t n,
+                                              const double *orders, double *rgb, char *msg, size_t msg_len);
+
+typedef struct {
+    int seed_x, seed_y;  /* the seed pixel (column, row from the top) */
+    double seed_order;   /* its known order, NAN: the best colour match over the whole table */
+    double window;       /* the largest change of order between neighbouring pixels (e.g. 0.3) */
+    double max_residual; /* RMS colour difference above which a pixel is left NaN (e.g. 0.08) */
+} biref_pe_tfp_opts;
+
+/* Fringe orders of a colour picture (rgb: W x H x 3 in the table's encoding, top row first) by
+ * colour matching against the calibration table (n rows, orders rising) with a continuity
+ * constraint: from the seed, each neighbour's order is searched within +-window of the order of
+ * the pixel it is reached from, best-matched pixels first. order_out (and residual_out if not
+ * NULL): W x H, NaN where no match within max_residual connects to the seed. */
+BIREF_API biref_status biref_pe_tfp_demodulate(const float *rgb, int W, int H, size_t n, const double *orders,
+                                               const double *table_rgb, const biref_pe_tfp_opts *o, float *order_out,
+                                               float *residual_out, char *msg, size_t msg_len);
+
 #ifdef __cplusplus
 }
 #endif

@@ -12,19 +12,32 @@ pkgs+=(libvtk9-dev gmsh calculix-ccx python3-meshio)
 pkgs+=(python3-numpy python3-cffi python3-pytest python3-pip python3-setuptools)
 # The WebGL2 viewer's test: headless Chromium driven by /usr/bin/python3, the GLSL reference compiler.
 pkgs+=(chromium glslang-tools python3)
+# The three.js package (web/three) and its test: Node and npm; three itself comes from the npm
+# registry at the version web/three/package-lock.json pins (npm ci, below).
+pkgs+=(nodejs)
 # Fuzzing the parsers (tests/fuzz): clang, its libFuzzer/sanitizer runtimes and OpenMP.
 pkgs+=(clang libclang-rt-14-dev libomp-14-dev)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+# Debian's npm is a package of its own; other nodejs builds carry npm.
+command -v npm >/dev/null 2>&1 || missing+=(npm)
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all packages present" >&2
-  exit 0
+else
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+  echo "install-deps: installing ${missing[*]}" >&2
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
-SUDO=""
-if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-echo "install-deps: installing ${missing[*]}" >&2
-export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+# web/three's node_modules from its lock file, when missing or older than the lock file (the
+# tests then need no network); npm ci also copies the library data into the package (prepare).
+three_dir="$(dirname "$0")/../web/three"
+if [ ! -f "$three_dir/node_modules/.package-lock.json" ] ||
+   [ "$three_dir/package-lock.json" -nt "$three_dir/node_modules/.package-lock.json" ]; then
+  echo "install-deps: npm ci in web/three" >&2
+  (cd "$three_dir" && npm ci --no-audit --no-fund --loglevel=error)
+fi

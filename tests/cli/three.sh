@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# The three.js package (web/three): its fig. 9c example page in headless Chromium (SwiftShader)
+# against `biref render` of examples/fig9c.json at 320x180, mean dE00 <= 0.5 and 99th percentile
+# <= 2, and a CPU render of a changed slab outside those bounds (the comparison can fail); the
+# mesh examples drawn without a WebGL error; `npm pack`'s tarball installed into an application
+# outside the repository, imported by Node (properties, refused values, shader injection) and
+# drawn by a page there (not under BIREF_TEST_QUICK). Needs web/three/node_modules (scripts/install-deps.sh runs npm ci),
+# Node, npm and Chromium; without them it fails.
+set -u
+. "$(dirname "$0")/lib.sh"
+W=320 H=180
+pkg=web/three
+
+json_num() { sed -n "s/^[[:space:]]*\"$1\":[[:space:]]*\\([-0-9.eE+]*\\),*\$/\\1/p" "$2" | head -1; }
+
+if [ ! -f $pkg/node_modules/three/build/three.module.js ]; then
+  echo "FAIL: $pkg/node_modules/three is missing: run scripts/install-deps.sh (npm ci in $pkg)"
+  exit 1
+fi
+# The package's copy of the library data (web/biref_data.js, checked by web.sh) is made fresh.
+node $pkg/scripts/build-data.mjs || { echo "FAIL: build-data"; exit 1; }
+
+# npm pack, then an application outside the repository with the tarball in its node_modules
+# (extracted as npm would install it; three linked from the package's own install: no network).
+app="$tmpdir/app"
+mkdir -p "$app/node_modules"
+tgz=$(cd $pkg && npm pack --offline --silent --pack-destination "$tmpdir" 2>"$tmpdir/pack.err" | tail -1)
+if [ -z "$tgz" ] || [ ! -f "$tmpdir/$tgz" ]; then
+  echo "FAIL: npm pack:"; sed 's/^/  /' "$tmpdir/pack.err" | head -5; fails=$((fails + 1))
+else
+  tar -xzf "$tmpdir/$tgz" -C "$tmpdir"
+  for f in package.json src/index.js src/BirefringentMaterial.js src/biref_data.js; do
+    [ -f "$tmpdir/package/$f" ] || { echo "FAIL: the packed package has no $f"; fails=$((fails + 1)); }
+  done
+  if tar -tzf "$tmpdir/$tgz" | grep -Eq 'node_modules|examples/'; then
+    echo "FAIL: the packed package carries node_modules or the examples"; fails=$((fails + 1))
+  fi
+  mv "$tmpdir/package" "$app/node_modules/biref-three"
+  ln -s "$PWD/$pkg/node_modules/three" "$app/node_modules/three"
+  cp tests/web/three-app/index.html tests/web/three-app/app.js tests/web/three_package.mjs "$app/"
+  (cd "$app" && node three_package.mjs) >"$tmpdir/node.out" 2>&1 ||
+    { echo "FAIL: Node import of the packed package:"; sed 's/^/  /' "$tmpdir/node.out" | head -8; fails=$((fails + 1)); }
+fi
+
+expect_ok "fig9c cpu" render examples/fig9c.json -o "$tmpdir/fig9c-cpu.png" --width $W --height $H --quiet --antialias none
+# The same slab 9 % thicker: the three.js picture of fig9c must be far from it.
+sed -e 's/"thickness_mm": 1.15/"thickness_mm": 1.25/' examples/fig9c.json >"$tmpdir/changed.json"
+expect_ok "changed cpu" render "$tmpdir/changed.json" -o "$tmpdir/changed-cpu.png" --width $W --height $H --quiet \
+  --antialias none
+
+url="file://$PWD/$pkg/examples/index.html"
+pages=("$url?example=fig9c&width=$W&height=$H&view=canvas" "$tmpdir/fig9c-three.png")
+# Every mesh example (one page, one renderer: each program compiled once) and the application
+# outside the repository, drawn without a WebGL error. They exercise no C code: the quick
+# (sanitizer) run leaves them out.
+if [ -z "${BIREF_TEST_QUICK:-}" ]; then
+  pages+=("$url?example=all&width=$W&height=$H&view=canvas" "$tmpdir/meshes.png")
+  [ -f "$app/index.html" ] && pages+=("file://$app/index.html" "$tmpdir/app.png")
+fi
+if ! /usr/bin/python3 tests/web/screenshot.py $W $H "${pages[@]}" 2>"$tmpdir/shot.err"; then
+  echo "FAIL: pages:"; sed 's/^/  /' "$tmpdir/shot.err"; fails=$((fails + 1))
+else
+  expect_ok "fig9c diff" diff "$tmpdir/fig9c-three.png" "$tmpdir/fig9c-cpu.png" --json
+  mean=$(json_num mean "$tmpdir/out") p99=$(json_num p99 "$tmpdir/out")
+  echo "fig9c: three.js vs cpu dE00 mean $mean, p99 $p99"
+  awk -v m="$mean" -v p="$p99" 'BEGIN { exit !(m != "" && p != "" && m <= 0.5 && p <= 2.0) }' ||
+    { echo "FAIL (fig9c): mean $mean > 0.5 or p99 $p99 > 2"; fails=$((fails + 1)); }
+  expect_ok "changed diff" diff "$tmpdir/fig9c-three.png" "$tmpdir/changed-cpu.png" --json
+  mean=$(json_num mean "$tmpdir/out") p99=$(json_num p99 "$tmpdir/out")
+  awk -v m="$mean" -v p="$p99" 'BEGIN { exit !(m > 0.5 || p > 2.0) }' ||
+    { echo "FAIL (the comparison does not see a 9 % thicker slab: mean $mean, p99 $p99)"; fails=$((fails + 1)); }
+fi
+finish

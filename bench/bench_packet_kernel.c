@@ -40,7 +40,7 @@ static double run_kernel(void *ctx, long iters)
     const double w_in[2] = {0.75, 0.25}, mask[2] = {1.0, 1.0};
     double sum = 0.0;
     for (long k = 0; k < iters; k++) {
-        c->kernel(c->sp, w_in, mask, c->hits, HITS, c->T, c->R, c->scalar, c->fp);
+        c->kernel(c->sp, w_in, mask, c->hits, HITS, c->T, c->R, c->scalar, c->fp, NULL);
         sum += c->T[k % HITS][1] + c->R[k % HITS][1];
     }
     return sum;

@@ -6,38 +6,16 @@
 #include "biref/biref.h"
 #include "cli_common.h"
 
-/* Parses "+1" / "-1" (also "1"). */
-static int parse_handedness(const char *cmd, const char *opt, const char *text, int *h)
-{
-    if (!strcmp(text, "+1") || !strcmp(text, "1")) {
-        *h = 1;
-        return 0;
-    }
-    if (!strcmp(text, "-1")) {
-        *h = -1;
-        return 0;
-    }
-    cli_error(cmd, "%s: circular handedness must be +1 or -1 (sign of S3), got '%s'", opt, text);
-    return -1;
-}
-
 int cli_parse_polarizer_state(const char *cmd, const char *opt, const char *text, double S[4])
 {
-    if (!strncmp(text, "linear:", 7)) {
-        double deg;
-        if (cli_parse_double(cmd, opt, text + 7, &deg)) return -1;
-        double a = deg * M_PI / 180.0;
-        S[0] = 1.0, S[1] = cos(2 * a), S[2] = sin(2 * a), S[3] = 0.0;
-        return 0;
+    biref_polarizer p;
+    char why[BIREF_MSG_SIZE];
+    if (biref_polarizer_parse(text, &p, why, sizeof why) != BIREF_OK) {
+        cli_error(cmd, "%s: %s", opt, why);
+        return -1;
     }
-    if (!strncmp(text, "circular:", 9)) {
-        int h;
-        if (parse_handedness(cmd, opt, text + 9, &h)) return -1;
-        S[0] = 1.0, S[1] = 0.0, S[2] = 0.0, S[3] = h;
-        return 0;
-    }
-    cli_error(cmd, "%s: expected linear:DEG or circular:+1|-1, got '%s'", opt, text);
-    return -1;
+    memcpy(S, p.stokes, sizeof p.stokes);
+    return 0;
 }
 
 int cli_parse_stokes(const char *cmd, const char *opt, const char *text, double S[4])
@@ -57,19 +35,15 @@ int cli_parse_stokes(const char *cmd, const char *opt, const char *text, double 
 
 int cli_parse_general_analyzer(const char *cmd, const char *opt, const char *text, double complex P[2][2])
 {
-    if (!strncmp(text, "linear:", 7)) {
-        double deg;
-        if (cli_parse_double(cmd, opt, text + 7, &deg)) return -1;
-        biref_analyzer_linear(deg * M_PI / 180.0, P);
-        return 1;
+    if (strncmp(text, "linear:", 7) && strncmp(text, "circular:", 9)) return 0;
+    biref_polarizer p;
+    char why[BIREF_MSG_SIZE];
+    if (biref_polarizer_parse(text, &p, why, sizeof why) != BIREF_OK) {
+        cli_error(cmd, "%s: %s", opt, why);
+        return -1;
     }
-    if (!strncmp(text, "circular:", 9)) {
-        int h;
-        if (parse_handedness(cmd, opt, text + 9, &h)) return -1;
-        biref_analyzer_circular(h, P);
-        return 1;
-    }
-    return 0;
+    memcpy(P, p.analyzer, sizeof p.analyzer);
+    return 1;
 }
 
 int cli_parse_expansion_order(const char *cmd, const char *text, biref_expansion_opts *o)

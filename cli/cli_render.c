@@ -1,5 +1,7 @@
 #include "cli_render.h"
 
+#include <stdlib.h>
+
 #include "outfile.h"
 
 int cli_load_scene(const char *cmd, const char *path, biref_scene *scene)
@@ -25,11 +27,30 @@ int cli_scene_resize(const char *cmd, biref_scene *scene, long width, long heigh
     return 0;
 }
 
+/* The process's spectral context: created at the first use, destroyed at exit. */
+static biref_spectral *process_sp;
+
+static void destroy_process_sp(void) { biref_spectral_destroy(process_sp); }
+
+const biref_spectral *cli_spectral(const char *cmd)
+{
+    if (process_sp) return process_sp;
+    char why[BIREF_MSG_SIZE];
+    if (biref_spectral_create(NULL, &process_sp, why, sizeof why) != BIREF_OK) {
+        cli_error(cmd, "cannot create the spectral tables: %s", why);
+        return NULL;
+    }
+    atexit(destroy_process_sp);
+    return process_sp;
+}
+
 int cli_renderer_create(const char *cmd, const biref_scene *scene, const biref_render_options *opt,
                         biref_renderer **out)
 {
+    const biref_spectral *sp = cli_spectral(cmd);
+    if (!sp) return CLI_EXIT_FAIL;
     char msg[320];
-    biref_status s = biref_renderer_create(scene, opt, out, msg, sizeof msg);
+    biref_status s = biref_renderer_create(sp, scene, opt, out, msg, sizeof msg);
     if (s == BIREF_OK) return 0;
     cli_error(cmd, "%s", msg);
     return s == BIREF_ERR_INVALID ? CLI_EXIT_USAGE : CLI_EXIT_FAIL;

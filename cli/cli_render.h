@@ -11,7 +11,11 @@ int cli_load_scene(const char *cmd, const char *path, biref_scene *scene);
 /* Applies --width/--height overrides (0 = keep) and re-validates. */
 int cli_scene_resize(const char *cmd, biref_scene *scene, long width, long height);
 
-/* Creates a renderer; an unsupported method/scene combination is bad usage (2), anything
+/* The default spectral context, one per process: created at the first call, destroyed at exit.
+ * NULL (after one error line) if it cannot be created. */
+const biref_spectral *cli_spectral(const char *cmd);
+
+/* Creates a renderer on cli_spectral's context; an unsupported method/scene combination is bad usage (2), anything
  * else a runtime failure (1). Returns 0 on success. */
 int cli_renderer_create(const char *cmd, const biref_scene *scene, const biref_render_options *opt,
                         biref_renderer **out);

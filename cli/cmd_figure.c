@@ -64,7 +64,7 @@ static double render_rows(const fig_ctx *c, const biref_scene *sc, const method_
     opt.threads = c->threads;
     biref_renderer *r = NULL;
     char msg[256];
-    if (biref_renderer_create(sc, &opt, &r, msg, sizeof msg) != BIREF_OK)
+    if (biref_renderer_create(c->sp, sc, &opt, &r, msg, sizeof msg) != BIREF_OK)
         return cli_error(FIG_CMD, "%s: %s", ms->name, msg), -1.0;
     biref_progress_bar bar;
     char what[48];
@@ -404,7 +404,7 @@ int cmd_figure(int argc, char **argv)
         case 2: rc = fig7(&c); break;
         case 3: rc = fig9(&c, scenes); break;
         case 4: rc = table1(&c, scenes); break;
-        case 5: rc = fig_aliasing(c.dir, scenes, c.quick, c.threads); break;
+        case 5: rc = fig_aliasing(c.sp, c.dir, scenes, c.quick, c.threads); break;
         default: rc = fig_dispersion(&c); break;
         }
         if (rc == CLI_EXIT_OK) fprintf(stderr, "biref figure: %s done in %.1f s\n", NAMES[i], biref_wall_seconds() - t0);

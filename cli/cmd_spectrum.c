@@ -194,12 +194,6 @@ static int check_args(spectrum_args *a)
     if ((a->have_order || a->have_tol) && a->method != BIREF_METHOD_EXPANSION)
         return cli_error(CMD, "%s: only valid with --method expansion", a->have_order ? "--order" : "--tolerance"), -1;
     if (a->have_order && a->have_tol) return cli_error(CMD, "--order and --tolerance exclude each other"), -1;
-    /* A dispersive material: the numeric methods sample n(λ); the closed forms do not yet. */
-    const char *disp = cli_slab_dispersion_option(&a->so);
-    if (disp && (a->method == BIREF_METHOD_ANALYTIC || a->method == BIREF_METHOD_EXPANSION))
-        return cli_error(CMD, "%s: the %s method does not take dispersion yet; use --method numeric or ground-truth",
-                         disp, biref_method_name(a->method)),
-               -1;
     if (!a->general_in) {
         /* The s/p fractions as a (diagonal) Stokes vector, for the output. */
         a->stokes[0] = 1.0;
@@ -242,7 +236,8 @@ static void make_light(const spectrum_args *a, biref_light *l)
     biref_light_set_analyzer(l, (const double complex(*)[2])a->P_an);
 }
 
-/* The numeric integration of a dispersive slab, n(λ) at every sample (material.h). */
+/* A dispersive slab (material.h): the numeric methods sample n(λ), the closed-form ones linearise
+ * each band's phases or integrate exactly where that fails. */
 static int compute_dispersive(const spectrum_args *a, const biref_integrator *it, const biref_light *light,
                               spectrum_result *res)
 {
@@ -253,7 +248,7 @@ static int compute_dispersive(const spectrum_args *a, const biref_integrator *it
     if (s == BIREF_OK)
         s = biref_integrate_material(it, a->so.material, &a->so.slab, theta, BIREF_SIDE_BOTH, light, &mixed);
     if (s == BIREF_ERR_ILLCOND) return cli_error(CMD, "numerical failure (non-finite result)"), CLI_EXIT_FAIL;
-    if (s != BIREF_OK) return cli_error(CMD, "numeric integration: %s", biref_status_string(s)), CLI_EXIT_FAIL;
+    if (s != BIREF_OK) return cli_error(CMD, "integration: %s", biref_status_string(s)), CLI_EXIT_FAIL;
     memcpy(res->T_xyz, mixed.T, sizeof res->T_xyz);
     memcpy(res->R_xyz, mixed.R, sizeof res->R_xyz);
     memcpy(res->order_used, mixed.order_used, sizeof res->order_used);

@@ -50,7 +50,7 @@ static const variant VARIANTS[NVAR] = {{"(a) 1 spp, point look-ups", BIREF_ANTIA
                                        {"(c) 4x4 spp, point look-ups", BIREF_ANTIALIAS_NONE, 4},
                                        {"reference", BIREF_ANTIALIAS_NONE, 0}};
 
-static double render_rows(const biref_scene *sc, biref_antialias aa, int K, int threads, int y0, int y1, float *xyz,
+static double render_rows(const biref_spectral *sp, const biref_scene *sc, biref_antialias aa, int K, int threads, int y0, int y1, float *xyz,
                           const char *label)
 {
     biref_render_options opt;
@@ -60,7 +60,7 @@ static double render_rows(const biref_scene *sc, biref_antialias aa, int K, int 
     opt.threads = threads;
     biref_renderer *r = NULL;
     char msg[256];
-    if (biref_renderer_create(sc, &opt, &r, msg, sizeof msg) != BIREF_OK) return cli_error(CMD, "%s", msg), -1.0;
+    if (biref_renderer_create(sp, sc, &opt, &r, msg, sizeof msg) != BIREF_OK) return cli_error(CMD, "%s", msg), -1.0;
     biref_progress_bar bar;
     char what[48];
     snprintf(what, sizeof what, "figure %s", label);
@@ -78,7 +78,7 @@ static double render_rows(const biref_scene *sc, biref_antialias aa, int K, int 
  * 6 mm thick, 500 N, dark-field circular polariscope) at the pixel pitch of its default 512-pixel
  * picture (pitch times div), the W x H window whose top edge runs 1 mm below the upper load point,
  * where the fringes crowd. */
-static double render_pe(biref_pe_light_kind light, biref_antialias aa, int K, int threads, int W, int H, int div,
+static double render_pe(const biref_spectral *sp, biref_pe_light_kind light, biref_antialias aa, int K, int threads, int W, int H, int div,
                         float *xyz)
 {
     biref_pe_setup s;
@@ -91,11 +91,8 @@ static double render_pe(biref_pe_light_kind light, biref_antialias aa, int K, in
     biref_pe_polariscope_make(BIREF_PE_CIRCULAR, BIREF_PE_DARK, 0.0, &s.pol);
     biref_pe_field f;
     char msg[256];
-    biref_spectral *sp = NULL;
     if (biref_pe_field_disk(&f, 25e-3, s.thickness, 500.0, msg, sizeof msg) != BIREF_OK)
         return cli_error(CMD, "disk: %s", msg), -1.0;
-    if (biref_spectral_create(NULL, &sp, msg, sizeof msg) != BIREF_OK)
-        return cli_error(CMD, "cannot create the spectral tables: %s", msg), -1.0;
     const double pitch = div * (f.frame[1] - f.frame[0]) / 512.0, top = 25e-3 - 1e-3;
     f.frame[0] = -0.5 * W * pitch, f.frame[1] = 0.5 * W * pitch;
     f.frame[2] = top - H * pitch, f.frame[3] = top;
@@ -105,7 +102,6 @@ static double render_pe(biref_pe_light_kind light, biref_antialias aa, int K, in
     biref_status st = aa == BIREF_ANTIALIAS_PREFILTER ? biref_pe_render_prefiltered(&s, sp, &f, &io, xyz, msg, sizeof msg)
                                                       : biref_pe_render(&s, sp, &f, &io, xyz, msg, sizeof msg);
     double t = biref_wall_seconds() - t0;
-    biref_spectral_destroy(sp);
     if (st != BIREF_OK) return cli_error(CMD, "photoelastic picture: %s", msg), -1.0;
     return t;
 }
@@ -122,7 +118,7 @@ typedef struct {
     double mean[NVAR], p95[NVAR], max[NVAR], secs[NVAR];
 } case_result;
 
-static int run_case(const alias_case *ac, const char *scenes, int quick, int threads, FILE *csv, case_result *res)
+static int run_case(const biref_spectral *sp, const alias_case *ac, const char *scenes, int quick, int threads, FILE *csv, case_result *res)
 {
     char path[4096], msg[256];
     if (!ac->pe) snprintf(path, sizeof path, "%s/%s", scenes, ac->file);
@@ -149,8 +145,8 @@ static int run_case(const alias_case *ac, const char *scenes, int quick, int thr
     for (int v = 0; v < NVAR && !rc; v++) {
         int K = VARIANTS[v].K ? VARIANTS[v].K : K_ref;
         fprintf(stderr, "biref figure: aliasing: %s: %s (%dx%d samples)\n", ac->label, VARIANTS[v].name, K, K);
-        res->secs[v] = ac->pe ? render_pe((biref_pe_light_kind)(ac->pe - 1), VARIANTS[v].aa, K, threads, W, H, div, xyz[v])
-                              : render_rows(&sc, VARIANTS[v].aa, K, threads, y0, y1, xyz[v], "aliasing");
+        res->secs[v] = ac->pe ? render_pe(sp, (biref_pe_light_kind)(ac->pe - 1), VARIANTS[v].aa, K, threads, W, H, div, xyz[v])
+                              : render_rows(sp, &sc, VARIANTS[v].aa, K, threads, y0, y1, xyz[v], "aliasing");
         if (res->secs[v] < 0) rc = 1;
         else biref_xyz_image_to_srgb8(xyz[v] + (size_t)3 * W * y0, npx, res->rgb[v]);
     }
@@ -179,7 +175,7 @@ static int run_case(const alias_case *ac, const char *scenes, int quick, int thr
     return rc;
 }
 
-int fig_aliasing(const char *dir, const char *scenes, int quick, int threads)
+int fig_aliasing(const biref_spectral *sp, const char *dir, const char *scenes, int quick, int threads)
 {
     char csv_path[4096], png_path[4096];
     snprintf(csv_path, sizeof csv_path, "%s/aliasing.csv", dir);
@@ -192,7 +188,7 @@ int fig_aliasing(const char *dir, const char *scenes, int quick, int threads)
     case_result res[NCASES];
     memset(res, 0, sizeof res);
     int rc = 0, n = 0;
-    for (int i = 0; i < NCASES && !rc; i++, n++) rc = run_case(&CASES[i], scenes, quick, threads, csv, &res[i]);
+    for (int i = 0; i < NCASES && !rc; i++, n++) rc = run_case(sp, &CASES[i], scenes, quick, threads, csv, &res[i]);
     if (rc) fig_discard(csv_out);
     else if (fig_close_csv(csv_out, csv_path)) rc = 1;
     if (!rc) {

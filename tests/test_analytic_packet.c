@@ -12,10 +12,12 @@
 #include "optics/slab_internal.h"
 #include "render/render_internal.h"
 #include "spectral/analytic_packet.h"
+#include "spectral/analytic_terms.h"
 #include "spectral/integrator_internal.h"
 #include "spectral/phase_prefilter.h"
 #include "spectral/spectral_internal.h"
 #include "test_cases.h"
+#include "test_render_util.h"
 
 static int quick;
 
@@ -133,7 +135,7 @@ static void test_hit_kernels_vs_scalar(void)
     }
     for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
         if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
-        biref_simd_hits_kernel((biref_simd_isa)isa)(sp, w_in, mask, hits, n, T, R, scalar, NULL);
+        biref_simd_hits_kernel((biref_simd_isa)isa)(sp, w_in, mask, hits, n, T, R, scalar, NULL, NULL);
         double worst = 0.0;
         int taken = 0, declined = 0;
         for (size_t k = 0; k < n; k++) {
@@ -218,7 +220,7 @@ static void prefiltered_hit_kernels_vs_scalar(void)
     CHECK(moved > 0.05);
     for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
         if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
-        biref_simd_hits_kernel((biref_simd_isa)isa)(sp, w_in, mask, hits, n, T, R, scalar, fps);
+        biref_simd_hits_kernel((biref_simd_isa)isa)(sp, w_in, mask, hits, n, T, R, scalar, fps, NULL);
         double worst = 0.0;
         int taken = 0;
         for (size_t k = 0; k < n; k++) {
@@ -254,8 +256,8 @@ static float *render_with(const char *path, const char *isa, biref_antialias aa,
     opt.antialias = aa;
     biref_renderer *r = NULL;
     float *xyz = NULL;
-    if (biref_renderer_create(&sc, &opt, &r, msg, sizeof msg) == BIREF_OK) {
-        CHECK(!strcmp(biref_simd_isa_name(biref_integrator_simd(r->integrator)), isa));
+    if (biref_renderer_create(test_sp(), &sc, &opt, &r, msg, sizeof msg) == BIREF_OK) {
+        CHECK(!strcmp(biref_simd_isa_name(biref_integrator_simd(r->shader->it)), isa));
         xyz = malloc((size_t)w * h * 3 * sizeof *xyz);
         if (xyz && biref_render_image(r, xyz, NULL, NULL, NULL) != BIREF_OK) CHECK(0);
     }
@@ -313,6 +315,117 @@ static void test_renders_per_isa(void) { renders_per_isa(BIREF_ANTIALIAS_NONE); 
 /* The renderer's default: prefiltered look-ups in the kernel's lanes. */
 static void test_prefiltered_renders_per_isa(void) { renders_per_isa(BIREF_ANTIALIAS_PREFILTER); }
 
+/* A random real light of a hit: a linear polarizer (C = e e^T, |e| <= 1) or partially polarized
+ * light in the s/p plane (S3 = 0), and a world-fixed-like linear analyzer P = a (a / |a|)^T with
+ * |a| <= 1 or none (P = I). */
+static void random_real_light(test_rng *rng, biref_packet_light *l)
+{
+    const double g = test_uniform(rng, 0, M_PI), amp = test_uniform(rng, 0.2, 1);
+    if (test_uniform(rng, 0, 1) < 0.5) {
+        const double e[2] = {amp * cos(g), amp * sin(g)};
+        l->C[0] = e[0] * e[0], l->C[1] = e[0] * e[1], l->C[2] = e[1] * e[1];
+    } else {
+        const double S1 = test_uniform(rng, -0.5, 0.5), S2 = test_uniform(rng, -0.5, 0.5);
+        l->C[0] = 0.5 * (1 + S1), l->C[1] = 0.5 * S2, l->C[2] = 0.5 * (1 - S1);
+    }
+    if (test_uniform(rng, 0, 1) < 0.2) {
+        l->P[0] = 1, l->P[1] = 0, l->P[2] = 0, l->P[3] = 1;
+        return;
+    }
+    const double h = test_uniform(rng, 0, M_PI), len = test_uniform(rng, 0.3, 1);
+    const double a[2] = {len * cos(h), len * sin(h)}, u[2] = {cos(h), sin(h)};
+    l->P[0] = a[0] * u[0], l->P[1] = a[0] * u[1], l->P[2] = a[1] * u[0], l->P[3] = a[1] * u[1];
+}
+
+static void light_matrices(const biref_packet_light *l, double complex C[2][2], double complex P[2][2])
+{
+    C[0][0] = l->C[0], C[0][1] = C[1][0] = l->C[1], C[1][1] = l->C[2];
+    P[0][0] = l->P[0], P[0][1] = l->P[1], P[1][0] = l->P[2], P[1][1] = l->P[3];
+}
+
+/* The hit kernels under a light per hit (world-fixed polarizers' form) against the scalar general
+ * terms (biref_analytic_general of the state and of its flip, with and without footprints), on
+ * every instruction set and through the integrator's door (biref_integrate_packet_hits_lit). */
+static void general_light_hit_kernels_vs_scalar(void)
+{
+    biref_spectral *sp = NULL;
+    biref_phase_prefilter *pf = NULL;
+    CHECK(biref_spectral_create(NULL, &sp, NULL, 0) == BIREF_OK);
+    CHECK(biref_phase_prefilter_create(sp, &pf) == BIREF_OK);
+    enum { N = 301 };
+    static biref_packet_hit hits[N];
+    static biref_packet_hit_light lights[N];
+    static biref_opl_footprint fps[N];
+    static double want[2][N][2][3], T[N][3], R[N][3];
+    static unsigned char scalar[N];
+    test_rng rng = {0x6e7u};
+    size_t n = 0;
+    while (n < N) {
+        biref_slab s;
+        double theta;
+        biref_slab_state st, fl;
+        random_slab(&rng, (int)n, &s, &theta);
+        if (biref_slab_prepare_trusted(&s, theta, &st) != BIREF_OK || !biref_packet_eligible(sp, &st)) continue;
+        hits[n] = (biref_packet_hit){s.eta_o, s.eta_e, {0, 0, 0}, s.thickness_nm, s.eta_i, s.eta_i * sin(theta)};
+        biref_axis_unit_unchecked(s.axis, hits[n].axis);
+        random_real_light(&rng, &lights[n].T);
+        random_real_light(&rng, &lights[n].R);
+        random_footprint(&rng, pf, &fps[n]);
+        biref_opl_footprint fpR;
+        biref_opl_footprint_flip(&fps[n], &fpR);
+        biref_slab_state_flip(&st, &fl);
+        double complex C[2][2], P[2][2];
+        for (int f = 0; f < 2; f++) {
+            light_matrices(&lights[n].T, C, P);
+            biref_analytic_general(sp, &st, f ? &fps[n] : NULL, BIREF_TRANSMISSION, (const double complex(*)[2])C,
+                                   (const double complex(*)[2])P, want[f][n][0]);
+            light_matrices(&lights[n].R, C, P);
+            biref_analytic_general(sp, &fl, f ? &fpR : NULL, BIREF_REFLECTION, (const double complex(*)[2])C,
+                                   (const double complex(*)[2])P, want[f][n][1]);
+        }
+        n++;
+    }
+    for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
+        if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
+        for (int f = 0; f < 2; f++) {
+            biref_simd_hits_kernel((biref_simd_isa)isa)(sp, NULL, NULL, hits, n, T, R, scalar, f ? fps : NULL, lights);
+            double worst = 0.0;
+            int taken = 0;
+            for (size_t k = 0; k < n; k++) {
+                if (scalar[k]) continue;
+                taken++;
+                for (int b = 0; b < 3; b++)
+                    worst = fmax(worst, fmax(fabs(T[k][b] - want[f][k][0][b]), fabs(R[k][b] - want[f][k][1][b])));
+            }
+            printf("%s%s, light per hit: %d of %zu hits in lanes, max |packet - scalar| = %.3g\n",
+                   biref_simd_isa_name((biref_simd_isa)isa), f ? " prefiltered" : "", taken, n, worst);
+            CHECK(worst < 1e-11);
+            CHECK(taken >= (int)n - (int)n / 50);
+        }
+    }
+    /* The integrator's door: the analytic method takes them, another method declines every hit. */
+    biref_integrator_options o;
+    biref_integrator_options_default(&o);
+    biref_integrator *it = NULL;
+    CHECK(biref_integrator_create(sp, &o, &it, NULL, 0) == BIREF_OK);
+    biref_integrate_packet_hits_lit(it, hits, NULL, n, lights, T, R, scalar);
+    int taken = 0;
+    for (size_t k = 0; k < n; k++)
+        if (!scalar[k]) {
+            taken++;
+            for (int b = 0; b < 3; b++) CHECK_NEAR(T[k][b], want[0][k][0][b], 1e-11);
+        }
+    CHECK(taken > 0);
+    biref_integrator_destroy(it);
+    o.method = BIREF_METHOD_EXPANSION;
+    CHECK(biref_integrator_create(sp, &o, &it, NULL, 0) == BIREF_OK);
+    biref_integrate_packet_hits_lit(it, hits, NULL, n, lights, T, R, scalar);
+    for (size_t k = 0; k < n; k++) CHECK(scalar[k] == 1);
+    biref_integrator_destroy(it);
+    biref_phase_prefilter_destroy(pf);
+    biref_spectral_destroy(sp);
+}
+
 int main(int argc, char **argv)
 {
     quick = getenv("BIREF_TEST_QUICK") != NULL;
@@ -320,6 +433,7 @@ int main(int argc, char **argv)
         {"packet_eligible_unless_total_reflection_or_coherent_regime",
          test_packet_eligible_unless_total_reflection_or_coherent_regime},
         {"unknown_simd_value_is_refused", unknown_simd_value_is_refused},
+        {"general_light_hit_kernels_vs_scalar", general_light_hit_kernels_vs_scalar},
         {"hit_kernels_vs_scalar_set_up", test_hit_kernels_vs_scalar},
         {"prefiltered_hit_kernels_vs_scalar", prefiltered_hit_kernels_vs_scalar},
         {"renders_per_isa_vs_scalar", test_renders_per_isa},

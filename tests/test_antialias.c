@@ -127,12 +127,12 @@ static void prefilter_and_supersample_options_are_checked(void)
     biref_renderer *r = NULL;
     opt.method = BIREF_METHOD_NUMERIC;
     opt.antialias = BIREF_ANTIALIAS_PREFILTER;
-    CHECK(biref_renderer_create(&sc, &opt, &r, msg, sizeof msg) == BIREF_ERR_INVALID && !r);
+    CHECK(biref_renderer_create(test_sp(), &sc, &opt, &r, msg, sizeof msg) == BIREF_ERR_INVALID && !r);
     opt.method = BIREF_METHOD_ANALYTIC;
     opt.supersample = 0;
-    CHECK(biref_renderer_create(&sc, &opt, &r, msg, sizeof msg) == BIREF_ERR_INVALID && !r);
+    CHECK(biref_renderer_create(test_sp(), &sc, &opt, &r, msg, sizeof msg) == BIREF_ERR_INVALID && !r);
     opt.supersample = BIREF_MAX_SUPERSAMPLE + 1;
-    CHECK(biref_renderer_create(&sc, &opt, &r, msg, sizeof msg) == BIREF_ERR_INVALID && !r);
+    CHECK(biref_renderer_create(test_sp(), &sc, &opt, &r, msg, sizeof msg) == BIREF_ERR_INVALID && !r);
 }
 
 /* Re(opl) of the legs of a ray along dir through the slab's hit frame and the modes' normal
@@ -141,7 +141,7 @@ static void prefilter_and_supersample_options_are_checked(void)
 static void legs_through_the_frame(const render_slab *sl, const double dir[3], double opl[4])
 {
     biref_hit_frames f;
-    biref_render_hit_frames(sl->normal, sl->tangent, sl->axis_world, &sl->base, dir, &f);
+    biref_shading_frames(sl->normal, sl->tangent, sl->axis_world, &sl->base, dir, &f);
     double complex q[4];
     biref_uniaxial_normal_components(f.slab.eta_o, f.slab.eta_e, f.slab.axis, f.slab.eta_i * sin(f.theta), q);
     const double d = f.slab.thickness_nm;
@@ -167,7 +167,7 @@ static void footprint_matches_the_modes(void)
         biref_render_options_default(&opt);
         opt.antialias = BIREF_ANTIALIAS_PREFILTER;
         biref_renderer *r = NULL;
-        CHECK(biref_renderer_create(&sc, &opt, &r, NULL, 0) == BIREF_OK);
+        CHECK(biref_renderer_create(test_sp(), &sc, &opt, &r, NULL, 0) == BIREF_OK);
         if (!r) continue;
         const render_slab *sl = &r->slabs[0];
         for (int k = 0; k < 400; k++) {

@@ -23,7 +23,7 @@ static float *render(const biref_scene *sc, biref_method method, int samples, in
     opt.threads = threads;
     biref_renderer *r = NULL;
     char msg[256];
-    if (biref_renderer_create(sc, &opt, &r, msg, sizeof msg) != BIREF_OK) {
+    if (biref_renderer_create(test_sp(), sc, &opt, &r, msg, sizeof msg) != BIREF_OK) {
         fprintf(stderr, "renderer_create: %s\n", msg);
         return NULL;
     }
@@ -173,7 +173,7 @@ static void test_crossed_polarizers_dark_background_and_lit_slab(void)
     biref_render_options_default(&opt);
     biref_renderer *r = NULL;
     char msg[256] = "";
-    CHECK(biref_renderer_create(&wf, &opt, &r, msg, sizeof msg) == BIREF_OK);
+    CHECK(biref_renderer_create(test_sp(), &wf, &opt, &r, msg, sizeof msg) == BIREF_OK);
     biref_renderer_destroy(r);
     x = render(&wf, BIREF_METHOD_NUMERIC, 32, 2, NULL);
     if (x) {
@@ -181,9 +181,9 @@ static void test_crossed_polarizers_dark_background_and_lit_slab(void)
          * a little (the projections are not orthogonal); it stays well below parallel axes. */
         double corner = x[1];
         free(x);
-        wf.filter.direction[0] = 0;
-        wf.filter.direction[1] = 1;
-        wf.filter.direction[2] = 0;
+        wf.light.analyzer_axis[0] = 0;
+        wf.light.analyzer_axis[1] = 1;
+        wf.light.analyzer_axis[2] = 0;
         x = render(&wf, BIREF_METHOD_NUMERIC, 32, 2, NULL);
         if (x) {
             printf("world-fixed polarizers, background corner Y: crossed %.4f, parallel %.4f\n", corner, x[1]);

@@ -54,7 +54,7 @@ static biref_renderer *make(const char *path, const char *isa, int width, int he
     opt.threads = 2;
     opt.antialias = aa;
     biref_renderer *r = NULL;
-    if (biref_renderer_create(&sc, &opt, &r, msg, sizeof msg) != BIREF_OK) fprintf(stderr, "renderer: %s\n", msg);
+    if (biref_renderer_create(test_sp(), &sc, &opt, &r, msg, sizeof msg) != BIREF_OK) fprintf(stderr, "renderer: %s\n", msg);
     unsetenv("BIREF_SIMD");
     CHECK(r != NULL);
     return r;

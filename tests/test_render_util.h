@@ -9,6 +9,18 @@
 #include "biref/biref.h"
 #include "test_util.h"
 
+/* The test program's one spectral context (as a process has one), created at the first call and
+ * left to the process's exit. */
+static inline const biref_spectral *test_sp(void)
+{
+    static biref_spectral *sp;
+    if (!sp && biref_spectral_create(NULL, &sp, NULL, 0) != BIREF_OK) {
+        fprintf(stderr, "cannot create the spectral context\n");
+        exit(1);
+    }
+    return sp;
+}
+
 /* Loads path (relative to the source tree, ctest's working directory) at width x height; that
  * it loads is a check. */
 static inline int test_load_scene(const char *path, biref_scene *sc, int width, int height)
@@ -31,7 +43,7 @@ static inline float *test_render_xyz(const biref_scene *sc, const biref_render_o
 {
     biref_renderer *r = NULL;
     char msg[256];
-    if (biref_renderer_create(sc, opt, &r, msg, sizeof msg) != BIREF_OK) {
+    if (biref_renderer_create(test_sp(), sc, opt, &r, msg, sizeof msg) != BIREF_OK) {
         fprintf(stderr, "renderer: %s\n", msg);
         return NULL;
     }

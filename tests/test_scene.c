@@ -45,10 +45,10 @@ static void test_valid_scenes_and_examples_parse_with_defaults_and_unit_vectors(
     CHECK(sc.n_panels == 1);
     CHECK_NEAR(sc.panels[0].radiance[2], 0.8, 0);
     CHECK(sc.env.type == BIREF_ENV_CHECKER);
-    CHECK(sc.polarization.type == BIREF_POL_SP);
-    CHECK_NEAR(sc.polarization.s, 0.75, 1e-15); /* s and p normalised to a sum of 1 */
-    CHECK_NEAR(sc.polarization.p, 0.25, 1e-15);
-    CHECK(sc.filter.type == BIREF_FILTER_P);
+    CHECK(sc.light.sp_model && !biref_light_is_world_fixed(&sc.light));
+    CHECK_NEAR(sc.light.w_in[0], 0.75, 1e-15); /* s and p normalised to a sum of 1 */
+    CHECK_NEAR(sc.light.w_in[1], 0.25, 1e-15);
+    CHECK(sc.light.has_analyzer && sc.light.mask[0] == 0.0 && sc.light.mask[1] == 1.0); /* filter p */
 
     /* Minimal scene: defaults for everything optional. */
     const char *minimal = "{\"camera\": {\"position\": [0,0,5], \"look_at\": [0,0,0]},"
@@ -60,8 +60,8 @@ static void test_valid_scenes_and_examples_parse_with_defaults_and_unit_vectors(
     if (!s) {
         CHECK_NEAR(sc.slabs[0].thickness_nm, 3e4, 1e-9);
         CHECK(sc.camera.width == 640 && sc.camera.height == 360);
-        CHECK(sc.polarization.type == BIREF_POL_UNPOLARIZED);
-        CHECK(sc.filter.type == BIREF_FILTER_NONE);
+        CHECK(sc.light.sp_model && sc.light.w_in[0] == 0.5 && sc.light.w_in[1] == 0.5); /* unpolarized */
+        CHECK(!sc.light.has_analyzer && !biref_light_is_world_fixed(&sc.light));         /* no filter */
         CHECK(sc.n_panels == 0);
         CHECK_NEAR(fabs(sc.slabs[0].tangent[0]) + fabs(sc.slabs[0].tangent[1]) + fabs(sc.slabs[0].tangent[2]) > 0, 1, 0);
         CHECK_NEAR(sc.slabs[0].tangent[0] * sc.slabs[0].normal[0] + sc.slabs[0].tangent[1] * sc.slabs[0].normal[1] +

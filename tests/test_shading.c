@@ -1,6 +1,7 @@
 /* The world-space entry point (biref_shade_hit): the paper's frame is recovered where world and
  * paper frame coincide, results do not depend on how the world is rotated (nor, under the paper's
  * light, on which way the normal points), lossless energy is conserved, bad input is refused. */
+#include <complex.h>
 #include <math.h>
 #include <string.h>
 
@@ -14,21 +15,33 @@ static const biref_surface SURFACE = {{0, 1, 0}, {1, 0, 0}, {0.3, 0.8, -0.52}, 1
 static double view[3];
 
 /* A numeric shader with a world-fixed polarizer and analyzer (not the paper's s/p light). */
-static const biref_polarization POLARIZER = {BIREF_POL_LINEAR, 0.5, 0.5, {0.6, 0.0, 0.8}};
-static const biref_filter ANALYZER = {BIREF_FILTER_LINEAR, {0.0, 0.8, -0.6}};
+static const double POLARIZER[3] = {0.6, 0.0, 0.8};
+static const double ANALYZER[3] = {0.0, 0.8, -0.6};
 
 static biref_shader *analytic; /* default options, no polarizer */
 static biref_spectral *sp;
 
-static biref_shader *numeric_shader(const biref_polarization *pol, const biref_filter *filt)
+/* Unpolarized light through world-fixed linear polarizers along pol and an. */
+static biref_light world_light(const double pol[3], const double an[3])
 {
-    biref_render_options opt;
-    biref_render_options_default(&opt);
+    static const double half[2] = {0.5, 0.5}, pass[2] = {1, 1};
+    biref_light l;
+    CHECK(biref_light_sp(half, pass, &l) == BIREF_OK);
+    CHECK(biref_light_world_polarizer(&l, pol) == BIREF_OK);
+    CHECK(biref_light_world_analyzer(&l, an) == BIREF_OK);
+    return l;
+}
+
+static biref_shader *numeric_shader(const double pol[3], const double an[3])
+{
+    biref_integrator_options opt;
+    biref_integrator_options_default(&opt);
     opt.method = BIREF_METHOD_NUMERIC;
     opt.samples = 32;
+    const biref_light l = world_light(pol, an);
     biref_shader *sh = NULL;
     char msg[256];
-    CHECK(biref_shader_create(&opt, pol, filt, &sh, msg, sizeof msg) == BIREF_OK);
+    CHECK(biref_shader_create(sp, &opt, &l, &sh, msg, sizeof msg) == BIREF_OK);
     return sh;
 }
 
@@ -128,7 +141,7 @@ static void rotating_the_world_changes_nothing(void)
 /* The same with a world-fixed polarizer and analyzer (numeric shader), rotated along. */
 static void rotating_the_world_with_its_polarizers_changes_nothing(void)
 {
-    biref_shader *num = numeric_shader(&POLARIZER, &ANALYZER);
+    biref_shader *num = numeric_shader(POLARIZER, ANALYZER);
     if (!num) return;
     double T0[3], R0[3];
     CHECK(biref_shade_hit(num, &SURFACE, view, T0, R0, NULL) == BIREF_OK);
@@ -138,11 +151,10 @@ static void rotating_the_world_with_its_polarizers_changes_nothing(void)
         double M[3][3], rv[3], T1[3], R1[3];
         biref_surface rs;
         rotated_hit(&rng, M, &rs, rv);
-        biref_polarization rpol = POLARIZER;
-        biref_filter rfilt = ANALYZER;
-        rotate(M, POLARIZER.direction, rpol.direction);
-        rotate(M, ANALYZER.direction, rfilt.direction);
-        biref_shader *rnum = numeric_shader(&rpol, &rfilt);
+        double rpol[3], ran[3];
+        rotate(M, POLARIZER, rpol);
+        rotate(M, ANALYZER, ran);
+        biref_shader *rnum = numeric_shader(rpol, ran);
         if (rnum) {
             CHECK(biref_shade_hit(rnum, &rs, rv, T1, R1, NULL) == BIREF_OK);
             for (int j = 0; j < 3; j++) {
@@ -189,14 +201,107 @@ static void bad_hits_are_refused(void)
     CHECK(biref_shade_hit(analytic, &bad, view, T, R, NULL) == BIREF_ERR_INVALID);
 }
 
+/* The analytic method integrates world-fixed polarizers (a general coherency and analyzer per hit,
+ * the GPU shader's formulas). */
 static void analytic_shader_takes_world_fixed_polarizer(void)
 {
     biref_shader *sh = NULL;
     char msg[256];
-    CHECK(biref_shader_create(NULL, &POLARIZER, NULL, &sh, msg, sizeof msg) == BIREF_OK && sh);
+    const biref_light l = world_light(POLARIZER, ANALYZER);
+    CHECK(biref_shader_create(sp, NULL, &l, &sh, msg, sizeof msg) == BIREF_OK && sh);
     double T[3], R[3];
     if (sh) CHECK(biref_shade_hit(sh, &SURFACE, view, T, R, NULL) == BIREF_OK && T[1] >= 0 && R[1] >= 0);
     biref_shader_destroy(sh);
+}
+
+/* Random hits (slabs, orientations, view rays) and a few bad ones, in one batch: every good hit
+ * is biref_shade_hit's to the packet kernel's rounding (the analytic shader) or exactly (the
+ * numeric shader with world-fixed polarizers, one hit at a time), every bad one has its code. */
+static void shade_hits_equals_shade_hit_per_hit(void)
+{
+    enum { N = 77 }; /* more than two of the batch's chunks, not a multiple of any packet */
+    biref_surface s[N];
+    double v[N][3], T[N][3], R[N][3];
+    biref_status st[N];
+    test_rng rng = {0x5ade5ULL};
+    for (int k = 0; k < N; k++) {
+        double M[3][3];
+        rotated_hit(&rng, M, &s[k], v[k]);
+        test_random_axis(&rng, s[k].axis);
+        s[k].eta_o = test_uniform(&rng, 1.3, 1.8);
+        s[k].eta_e = s[k].eta_o + test_uniform(&rng, -0.2, 0.2);
+        s[k].thickness_nm = test_uniform(&rng, 500, 20000);
+    }
+    s[5].thickness_nm = -1;                  /* a bad slab */
+    memcpy(s[40].tangent, s[40].normal, sizeof s[40].tangent); /* no frame */
+    v[60][0] = NAN;                          /* a bad ray */
+    biref_shader *num = numeric_shader(POLARIZER, ANALYZER);
+    const biref_shader *shaders[2] = {analytic, num};
+    for (int i = 0; i < 2; i++) {
+        if (!shaders[i]) continue;
+        CHECK(biref_shade_hits(shaders[i], N, s, (const double(*)[3])v, T, R, st) == BIREF_ERR_INVALID);
+        double worst = 0.0;
+        int agree = 1;
+        for (int k = 0; k < N; k++) {
+            double T1[3], R1[3];
+            const biref_status one = biref_shade_hit(shaders[i], &s[k], v[k], T1, R1, NULL);
+            agree &= one == st[k];
+            if (one != BIREF_OK) continue;
+            for (int j = 0; j < 3; j++) worst = fmax(worst, fmax(fabs(T[k][j] - T1[j]), fabs(R[k][j] - R1[j])));
+        }
+        CHECK(agree);
+        CHECK(st[5] == BIREF_ERR_INVALID && st[40] == BIREF_ERR_INVALID && st[60] == BIREF_ERR_INVALID);
+        printf("%s shader: batch against one hit at a time, worst |difference| %.3g\n", i ? "numeric" : "analytic",
+               worst);
+        CHECK(worst <= (i ? 0.0 : 1e-12));
+    }
+    biref_shader_destroy(num);
+    CHECK(biref_shade_hits(analytic, 0, NULL, NULL, NULL, NULL, NULL) == BIREF_OK);
+    CHECK(biref_shade_hits(NULL, 1, s, (const double(*)[3])v, T, R, NULL) == BIREF_ERR_INVALID);
+}
+
+/* A world-fixed polarizer along the incident wave's s passes s light only; an analyzer along its
+ * p passes p only; an axis along the wave itself blocks everything. */
+static void world_fixed_polarizer_resolves_in_each_wave_basis(void)
+{
+    const double s[3] = {1, 0, 0}, p_in[3] = {0, 0.6, 0.8}, p_out[3] = {0, 0.8, 0.6}, along[3] = {0, 0.8, -0.6};
+    biref_light l = world_light(s, p_out), at;
+    biref_light_at(&l, s, p_in, p_out, &at);
+    CHECK(!biref_light_is_world_fixed(&at) && !at.sp_model && at.has_analyzer);
+    CHECK_NEAR(creal(at.C[0][0]), 1, 1e-15);
+    CHECK_NEAR(cabs(at.C[1][1]) + cabs(at.C[0][1]), 0, 1e-15);
+    CHECK_NEAR(creal(at.P[1][1]), 1, 1e-15);
+    CHECK_NEAR(cabs(at.P[0][0]) + cabs(at.P[0][1]) + cabs(at.P[1][0]), 0, 1e-15);
+    CHECK_NEAR(biref_light_passthrough(&at), 0, 1e-15); /* crossed */
+    l = world_light(along, s);
+    biref_light_at(&l, s, p_in, p_out, &at);
+    CHECK_NEAR(creal(at.C[0][0]) + creal(at.C[1][1]), 0, 1e-15);
+    const double zero[3] = {0, 0, 0};
+    CHECK(biref_light_world_polarizer(&l, zero) == BIREF_ERR_INVALID);
+}
+
+/* The polarizer's text form: states and analyzers of "linear:DEG" and "circular:+1|-1", one line
+ * for anything else. */
+static void polarizer_text_form_parses_and_refuses(void)
+{
+    biref_polarizer p;
+    char msg[256];
+    CHECK(biref_polarizer_parse("linear:45", &p, msg, sizeof msg) == BIREF_OK);
+    CHECK_NEAR(p.stokes[0], 1, 0);
+    CHECK_NEAR(p.stokes[1], 0, 1e-15);
+    CHECK_NEAR(p.stokes[2], 1, 1e-15);
+    CHECK_NEAR(creal(p.analyzer[0][1]), 0.5, 1e-15);
+    CHECK(biref_polarizer_parse("circular:-1", &p, msg, sizeof msg) == BIREF_OK);
+    CHECK(p.stokes[3] == -1 && p.stokes[1] == 0);
+    CHECK_NEAR(cimag(p.analyzer[0][1]), -0.5, 1e-15);
+    CHECK(biref_polarizer_parse("circular:1", &p, NULL, 0) == BIREF_OK && p.stokes[3] == 1);
+    const char *bad[] = {"linear:", "linear:x", "linear:1e999", "linear:5deg", "circular:2", "circular:", "elliptic:1", ""};
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        msg[0] = 0;
+        CHECK(biref_polarizer_parse(bad[i], &p, msg, sizeof msg) == BIREF_ERR_INVALID && msg[0]);
+    }
+    CHECK(biref_polarizer_parse("circular:2", &p, msg, sizeof msg) == BIREF_ERR_INVALID);
+    CHECK(strstr(msg, "+1 or -1") != NULL);
 }
 
 int main(int argc, char **argv)
@@ -204,11 +309,11 @@ int main(int argc, char **argv)
     view[1] = cos(THETA);
     view[2] = sin(THETA);
     char msg[256];
-    if (biref_shader_create(NULL, NULL, NULL, &analytic, msg, sizeof msg) != BIREF_OK) {
+    if (biref_spectral_create(NULL, &sp, NULL, 0) != BIREF_OK) return 1;
+    if (biref_shader_create(sp, NULL, NULL, &analytic, msg, sizeof msg) != BIREF_OK) {
         fprintf(stderr, "shader: %s\n", msg);
         return 1;
     }
-    if (biref_spectral_create(NULL, &sp, NULL, 0) != BIREF_OK) return 1;
     static const test_case cases[] = {
         {"paper_frame_is_recovered", paper_frame_is_recovered},
         {"hit_equals_analytic_spectrum_and_conserves_energy", hit_equals_analytic_spectrum_and_conserves_energy},
@@ -217,6 +322,9 @@ int main(int argc, char **argv)
         {"flipping_the_normal_changes_nothing_under_paper_light", flipping_the_normal_changes_nothing_under_paper_light},
         {"bad_hits_are_refused", bad_hits_are_refused},
         {"analytic_shader_takes_world_fixed_polarizer", analytic_shader_takes_world_fixed_polarizer},
+        {"shade_hits_equals_shade_hit_per_hit", shade_hits_equals_shade_hit_per_hit},
+        {"world_fixed_polarizer_resolves_in_each_wave_basis", world_fixed_polarizer_resolves_in_each_wave_basis},
+        {"polarizer_text_form_parses_and_refuses", polarizer_text_form_parses_and_refuses},
     };
     int rc = test_run_cases("test_shading", cases, TEST_COUNT(cases), argc, argv);
     biref_shader_destroy(analytic);

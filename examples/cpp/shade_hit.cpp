@@ -21,10 +21,18 @@ int main()
         return 1;
     }
 
-    // One shader (method, light, analyzer) for the whole frame; RAII releases it.
+    // One spectral context per process, and one shader (method, light) for the whole frame
+    // (analytic method, unpolarized light: the nullptr defaults); RAII releases both, the shader
+    // first.
     char msg[256];
+    biref_spectral *raw_sp = nullptr;
+    if (biref_spectral_create(nullptr, &raw_sp, msg, sizeof msg) != BIREF_OK) {
+        std::fprintf(stderr, "shade_hit: %s\n", msg);
+        return 1;
+    }
+    std::unique_ptr<biref_spectral, decltype(&biref_spectral_destroy)> sp(raw_sp, biref_spectral_destroy);
     biref_shader *raw = nullptr;
-    if (biref_shader_create(nullptr, nullptr, nullptr, &raw, msg, sizeof msg) != BIREF_OK) {
+    if (biref_shader_create(sp.get(), nullptr, nullptr, &raw, msg, sizeof msg) != BIREF_OK) {
         std::fprintf(stderr, "shade_hit: %s\n", msg);
         return 1;
     }
@@ -44,13 +52,13 @@ int main()
     biref_xyz_to_srgb(r_xyz, r_rgb);
 
     std::printf("{\n  \"T\": {");
-    const char *sp[2] = {"s", "p"};
+    const char *sp_name[2] = {"s", "p"};
     for (int in = 0; in < 2; in++)
-        std::printf("\"%s\": {\"s\": %.17g, \"p\": %.17g}%s", sp[in], std::norm(T.m[in][0]), std::norm(T.m[in][1]),
+        std::printf("\"%s\": {\"s\": %.17g, \"p\": %.17g}%s", sp_name[in], std::norm(T.m[in][0]), std::norm(T.m[in][1]),
                     in ? "},\n" : ", ");
     std::printf("  \"R\": {");
     for (int in = 0; in < 2; in++)
-        std::printf("\"%s\": {\"s\": %.17g, \"p\": %.17g}%s", sp[in], std::norm(R.m[in][0]), std::norm(R.m[in][1]),
+        std::printf("\"%s\": {\"s\": %.17g, \"p\": %.17g}%s", sp_name[in], std::norm(R.m[in][0]), std::norm(R.m[in][1]),
                     in ? "},\n" : ", ");
     std::printf("  \"hit_theta_deg\": %.6f,\n", frames.theta * 180.0 / pi);
     std::printf("  \"hit_srgb_T\": [%.6f, %.6f, %.6f],\n", t_rgb[0], t_rgb[1], t_rgb[2]);

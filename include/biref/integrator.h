@@ -60,8 +60,9 @@ typedef struct {
 
 /* Integrates a prepared slab for the requested sides under `light` (every method takes every
  * light: the analytic method integrates a light outside the paper's s/p model with the general
- * coherency/analyzer terms of the GPU shader, docs/GPU.md). BIREF_ERR_INVALID for no side; BIREF_ERR_ILLCOND where the method breaks down or the result is not finite (the caller
- * decides what to show). No allocation; the expansion needs about 250 KB of stack. A per-sample
+ * coherency/analyzer terms of the GPU shader, docs/GPU.md). BIREF_ERR_INVALID for no side or a
+ * light with world-fixed polarizers (a shader resolves those per hit, shading.h); BIREF_ERR_ILLCOND
+ * where the method breaks down or the result is not finite (the caller decides what to show). No allocation; the expansion needs about 250 KB of stack. A per-sample
  * entry point: no message buffer (common.h), each code has the one meaning given here. */
 BIREF_API biref_status biref_integrate(const biref_integrator *it, const biref_slab_state *st, biref_sides sides,
                              const biref_light *light, biref_integration *out);

@@ -129,12 +129,15 @@ BIREF_API biref_status biref_material_slab_at(const biref_material *m, const bir
 
 /* biref_integrate for a slab of a dispersive material: geometry's axis, thickness and eta_i (its
  * eta_o, eta_e are ignored) at theta, the indices of m. The numeric and ground-truth methods
- * prepare the slab anew at every sample wavelength (exact; with constant indices the same
- * numbers as biref_integrate). BIREF_ERR_INVALID for the analytic and expansion methods (they do
- * not take dispersion yet), for a geometry failing biref_slab_check or an angle failing
- * biref_theta_check, for a sample where the material is unphysical (biref_material_check_band
- * over the integrator's band says why) and for no side; BIREF_ERR_SINGULAR from a sample's
- * interface solve; BIREF_ERR_ILLCOND for a non-finite result. No allocation. */
+ * prepare the slab anew at every sample wavelength (exact). The analytic method and the expansion
+ * linearise each leg's phase around each band's centroid (group path and phase offset, modes and
+ * Fresnel coefficients at the band's wavelength; docs/PHYSICS.md §7) and integrate exactly where
+ * the phases curve too much across a band. With constant indices every method gives the numbers
+ * of biref_integrate. BIREF_ERR_INVALID for a geometry failing biref_slab_check or an angle
+ * failing biref_theta_check, for a wavelength where the material is unphysical
+ * (biref_material_check_band over the integrator's band says why) and for no side;
+ * BIREF_ERR_SINGULAR from an interface solve; BIREF_ERR_ILLCOND for a non-finite result (or the
+ * expansion's). No allocation. */
 BIREF_API biref_status biref_integrate_material(const biref_integrator *it, const biref_material *m,
                                                 const biref_slab *geometry, double theta_rad, biref_sides sides,
                                                 const biref_light *light, biref_integration *out);

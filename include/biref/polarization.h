@@ -3,12 +3,16 @@
  * One description for every caller: the incident light as a coherency matrix (from a Stokes
  * vector, or the paper's incoherent s/p fractions) and an optional analyzer as a Jones matrix.
  * The paper's model (fig. 9: fractions w_in of s and p light, an analyzer that passes mask[s],
- * mask[p]) is the constructor biref_light_sp; it is a diagonal coherency and analyzer, and the
- * analytic method only handles lights of that kind. Bases: s/p of the incident wave for the
- * coherency, of the outgoing wave for the analyzer (docs/CONVENTIONS.md). Plain data, no
- * allocation; see integrator.h for how a light is used. */
+ * mask[p]) is the constructor biref_light_sp; it is a diagonal coherency and analyzer. Bases: s/p
+ * of the incident wave for the coherency, of the outgoing wave for the analyzer
+ * (docs/CONVENTIONS.md). A polarizer or analyzer may instead be fixed in the world (a linear
+ * polarizer along a world axis, as in a scene): its matrix then differs from ray to ray, and a
+ * shader (shading.h) resolves it for every hit (biref_light_at). Plain data, no allocation; see
+ * integrator.h for how a light is used. */
 #ifndef BIREF_POLARIZATION_H
 #define BIREF_POLARIZATION_H
+
+#include <stddef.h>
 
 #include "biref/common.h"
 
@@ -24,6 +28,11 @@ typedef struct {
      * detected colour of a slab is a mix of its four s/p pair intensities (biref_light_mix). */
     int sp_model;
     double w_in[2], mask[2];
+    /* World-fixed linear polarizers (biref_light_world_polarizer / _analyzer): when set, the
+     * incident light is polarized along polarizer_axis (C is then built per ray) and / or the
+     * analyzer passes analyzer_axis (P per ray). Unit world vectors. */
+    int world_polarizer, world_analyzer;
+    double polarizer_axis[3], analyzer_axis[3];
 } biref_light;
 
 /* The paper's light: incoherent fractions w_in[s], w_in[p] (>= 0) through an analyzer passing
@@ -39,6 +48,43 @@ BIREF_API void biref_light_coherency(const biref_complex C[2][2], biref_light *o
 /* Puts an analyzer (Jones matrix [in][out]) behind the slab, or removes it (P = NULL). The
  * light leaves the paper's model unless P is diagonal with entries equal to its mask. */
 BIREF_API void biref_light_set_analyzer(biref_light *l, const biref_complex P[2][2]);
+
+/* A world-fixed linear polarizer in front of the slab along the world axis `axis` (normalised here):
+ * in the basis (s, p) of a wave travelling along k it passes the amplitude (axis.s, axis.p), so
+ * light along the axis itself is blocked (Malus at oblique incidence). Replaces the incident
+ * coherency; the light leaves the paper's model. BIREF_ERR_INVALID for a zero or non-finite axis. */
+BIREF_API biref_status biref_light_world_polarizer(biref_light *l, const double axis[3]);
+
+/* A world-fixed linear analyzer behind the slab along `axis` (normalised here): it passes the
+ * amplitude E.a_t polarized along a_t (a_t: the axis' part transverse to the outgoing wave,
+ * |a_t| <= 1 acting as a transmission factor). Replaces the analyzer. BIREF_ERR_INVALID as above. */
+BIREF_API biref_status biref_light_world_analyzer(biref_light *l, const double axis[3]);
+
+/* 1 when the light has a world-fixed polarizer or analyzer (biref_light_at resolves it). */
+BIREF_API int biref_light_is_world_fixed(const biref_light *l);
+
+/* The light as one wave pair sees it: world-fixed parts resolved in the basis (s, p_in) of the
+ * incident wave and (s, p_out) of the outgoing wave (s shared, all unit world vectors, p = k x s).
+ * A light without world-fixed parts is copied unchanged. */
+BIREF_API void biref_light_at(const biref_light *l, const double s[3], const double p_in[3], const double p_out[3],
+                              biref_light *out);
+
+/* The intensity a light passes through its analyzer with no slab in between (a light without
+ * world-fixed parts, or one resolved by biref_light_at): sum C[i][j] P[i][k] conj(P[j][k]). */
+BIREF_API double biref_light_passthrough(const biref_light *l);
+
+/* A polarizer in its text form, as the command line and the Python bindings take it:
+ * "linear:DEG" (linear, DEG degrees from s towards p) or "circular:+1" / "circular:-1" (also
+ * "circular:1"; the handedness is the sign of S3, docs/CONVENTIONS.md). Gives the fully polarized
+ * state it lets through as a Stokes vector of unit intensity and the analyzer it makes (Jones
+ * matrix [in][out], biref_analyzer_linear / _circular). BIREF_ERR_INVALID with one line in msg
+ * for any other text. */
+typedef struct {
+    double stokes[4];
+    biref_complex analyzer[2][2];
+} biref_polarizer;
+
+BIREF_API biref_status biref_polarizer_parse(const char *text, biref_polarizer *out, char *msg, size_t msg_len);
 
 /* The detected XYZ of a light mixing the four s/p pair intensities X[in][out][band] of a
  * spectrum (transmission or reflection): sum w_in[i] mask[o] X[i][o]. Only for the paper's

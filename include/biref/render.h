@@ -16,6 +16,7 @@
 #include <stdio.h>
 
 #include "biref/common.h"
+#include "biref/polarization.h"
 #include "biref/spectral.h"
 
 #ifdef __cplusplus
@@ -64,21 +65,6 @@ typedef struct {
     double check_size;                      /* checker: tile size, in units of the ground's depth below the eye */
 } biref_environment;
 
-typedef enum { BIREF_POL_UNPOLARIZED = 0, BIREF_POL_SP = 1, BIREF_POL_LINEAR = 2 } biref_pol_type;
-
-typedef struct {
-    biref_pol_type type;
-    double s, p;          /* BIREF_POL_SP: fractions, normalised to s + p = 1 */
-    double direction[3];  /* BIREF_POL_LINEAR: world-fixed polarizer axis, unit */
-} biref_polarization;
-
-typedef enum { BIREF_FILTER_NONE = 0, BIREF_FILTER_S = 1, BIREF_FILTER_P = 2, BIREF_FILTER_LINEAR = 3 } biref_filter_type;
-
-typedef struct {
-    biref_filter_type type;
-    double direction[3]; /* BIREF_FILTER_LINEAR: world-fixed analyzer axis, unit */
-} biref_filter;
-
 typedef struct {
     biref_camera camera;
     double eta_medium; /* surrounding index, both sides of every slab */
@@ -87,8 +73,10 @@ typedef struct {
     int n_panels;
     biref_panel panels[BIREF_SCENE_MAX_PANELS];
     biref_environment env;
-    biref_polarization polarization;
-    biref_filter filter;
+    /* The scene file's "light.polarization" and "filter" as one light (polarization.h): s/p
+     * fractions (relative to each ray's plane of incidence) or a world-fixed linear polarizer,
+     * seen through no filter, an s or p filter or a world-fixed linear analyzer. */
+    biref_light light;
 } biref_scene;
 
 /* Parses a scene (JSON text of len bytes, need not be NUL-terminated) and validates it.
@@ -132,11 +120,13 @@ BIREF_API void biref_render_options_default(biref_render_options *opt);
 
 typedef struct biref_renderer biref_renderer;
 
-/* Precomputes everything per scene (spectral tables, numeric plan, per-slab frames).
- * BIREF_ERR_INVALID with a one-line msg if the scene is invalid or the method cannot
- * handle its polarizers (world-fixed polarizers need a numeric method or the expansion). */
-BIREF_API biref_status biref_renderer_create(const biref_scene *scene, const biref_render_options *opt,
-                                             biref_renderer **out, char *msg, size_t msg_len);
+/* Precomputes everything per scene: its shader (shading.h: the method's integrator under the
+ * scene's light, on the spectral context sp, which is borrowed and must outlive the renderer;
+ * one context serves every renderer and shader of a process) and the per-slab frames.
+ * BIREF_ERR_INVALID with a one-line msg if the scene or an option is invalid. */
+BIREF_API biref_status biref_renderer_create(const biref_spectral *sp, const biref_scene *scene,
+                                             const biref_render_options *opt, biref_renderer **out, char *msg,
+                                             size_t msg_len);
 BIREF_API void biref_renderer_destroy(biref_renderer *r);
 
 

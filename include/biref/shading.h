@@ -1,5 +1,9 @@
 /*
- * biref — shading one surface hit in world space, for renderers that trace their own rays.
+ * biref — the shader, and shading surface hits in world space for renderers that trace their own
+ * rays.
+ *
+ * A shader is the core object of every picture: a spectral context, an integrator of one method
+ * and one light. biref's own renderer, the GPU data export and the Python bindings hold one.
  *
  * A renderer knows, at a hit, the surface normal and tangent, the slab's constants and optic
  * axis (in the surface's local frame, as in scene files) and the view direction. The library
@@ -12,8 +16,10 @@
 #define BIREF_SHADING_H
 
 #include "biref/common.h"
+#include "biref/integrator.h"
 #include "biref/optics.h"
-#include "biref/render.h"
+#include "biref/polarization.h"
+#include "biref/spectral.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -49,17 +55,22 @@ typedef struct {
  * direction in the surface plane (an edge-on thin slab is invisible). */
 BIREF_API biref_status biref_hit_frames_make(const biref_surface *s, const double view_dir[3], biref_hit_frames *out);
 
-/* The spectral method, light polarisation and analyzer shared by every hit; immutable, may be used
- * by several threads. Same semantics as a scene's "light.polarization" and "filter"
- * (docs/SCENES.md "Polarisation"): s/p are relative to each ray's plane of incidence, "linear"
- * ones are world-fixed (they need a method other than analytic). NULL light = unpolarized, NULL
- * filter = none. */
+/* The spectral method and the light shared by every hit; immutable, may be used by several
+ * threads. sp is borrowed (it must outlive the shader; one context serves a whole process), opt
+ * NULL means the analytic method (biref_integrator_options_default), light NULL unpolarized light
+ * without analyzer. The light's s/p parts are relative to each ray's plane of incidence; its
+ * world-fixed polarizers (biref_light_world_polarizer / _analyzer) are resolved at every hit
+ * (docs/SCENES.md "Polarisation"). BIREF_ERR_INVALID with one line in msg for bad options, a light
+ * that is not finite or a light the method cannot integrate. */
 typedef struct biref_shader biref_shader;
 
-BIREF_API biref_status biref_shader_create(const biref_render_options *opt, const biref_polarization *light,
-                                           const biref_filter *filter, biref_shader **out, char *msg,
+BIREF_API biref_status biref_shader_create(const biref_spectral *sp, const biref_integrator_options *opt,
+                                           const biref_light *light, biref_shader **out, char *msg,
                                            size_t msg_len);
 BIREF_API void biref_shader_destroy(biref_shader *sh);
+/* The shader's method and light, as given at creation. */
+BIREF_API biref_method biref_shader_method(const biref_shader *sh);
+BIREF_API const biref_light *biref_shader_light(const biref_shader *sh);
 
 /* Shades one hit: T_xyz multiplies the radiance arriving from behind the slab along view_dir,
  * R_xyz the radiance arriving from the mirror direction (frames->mirror; frames may be NULL).
@@ -69,6 +80,15 @@ BIREF_API void biref_shader_destroy(biref_shader *sh);
  * (outputs then undefined: biref's renderer shows a perfect mirror). No allocation. */
 BIREF_API biref_status biref_shade_hit(const biref_shader *sh, const biref_surface *s, const double view_dir[3],
                                        double T_xyz[3], double R_xyz[3], biref_hit_frames *frames);
+
+/* n hits at once (hit k: surfaces[k] seen along view_dirs[k]), the way biref's own renderer shades
+ * its tiles: the analytic method evaluates them in SIMD packets, hits it cannot take one by one.
+ * T_xyz[k], R_xyz[k] as biref_shade_hit gives them (up to roundings: the packet kernel sums in
+ * another order); status[k] (may be NULL) each hit's code as biref_shade_hit's. Returns BIREF_OK or
+ * the first failure's code. No allocation. */
+BIREF_API biref_status biref_shade_hits(const biref_shader *sh, size_t n, const biref_surface *surfaces,
+                                        const double (*view_dirs)[3], double (*T_xyz)[3], double (*R_xyz)[3],
+                                        biref_status *status);
 
 #ifdef __cplusplus
 }

@@ -306,6 +306,26 @@ def _method(name):
     return m[0]
 
 
+_PROCESS_SP = []
+
+
+def _default_sp():
+    """The process's spectral context (default band and colour-matching functions), created at the
+    first use and shared by every render, as one context serves a whole process."""
+    if not _PROCESS_SP:
+        spp = _ffi.new("biref_spectral **")
+        _call("spectral tables", _lib.biref_spectral_create, _ffi.NULL, spp)
+        _PROCESS_SP.append(_ffi.gc(spp[0], _lib.biref_spectral_destroy))
+    return _PROCESS_SP[0]
+
+
+def _polarizer(what, text):
+    """The library's parser of the polarizer text form ("linear:DEG", "circular:+1|-1")."""
+    p = _ffi.new("biref_polarizer *")
+    _call(what, _lib.biref_polarizer_parse, str(text).encode(), p)
+    return p
+
+
 def _light(polarization, polarizer, stokes, analyzer):
     """(w_in, mask, stokes or None, P or None, names): the paper's s/p model, or a general state."""
     w_in, mask = [0.5, 0.5], [1.0, 1.0]
@@ -313,14 +333,7 @@ def _light(polarization, polarizer, stokes, analyzer):
     if polarizer is not None and stokes is not None:
         raise ValueError("polarizer and stokes exclude each other")
     if polarizer is not None:
-        kind, _, val = str(polarizer).partition(":")
-        if kind == "linear":
-            a = float(val) * _math.pi / 180.0
-            S = [1.0, _math.cos(2 * a), _math.sin(2 * a), 0.0]
-        elif kind == "circular" and val in ("+1", "1", "-1"):
-            S = [1.0, 0.0, 0.0, float(int(val))]
-        else:
-            raise ValueError(f"polarizer: expected linear:DEG or circular:+1|-1, got {polarizer!r}")
+        S = list(_polarizer("polarizer", polarizer).stokes)
         pol_name = str(polarizer)
     elif stokes is not None:
         S = [float(x) for x in stokes]
@@ -340,14 +353,9 @@ def _light(polarization, polarizer, stokes, analyzer):
             w_in = [w[0] / sum(w), w[1] / sum(w)]
         pol_name = None
     an = str(analyzer)
-    if an.startswith("linear:"):
+    if an.startswith(("linear:", "circular:")):
         P = _ffi.new("biref_complex[2][2]")
-        _lib.biref_analyzer_linear(float(an[7:]) * _math.pi / 180.0, P)
-    elif an.startswith("circular:"):
-        if an[9:] not in ("+1", "1", "-1"):
-            raise ValueError(f"analyzer: expected circular:+1 or circular:-1, got {analyzer!r}")
-        P = _ffi.new("biref_complex[2][2]")
-        _lib.biref_analyzer_circular(int(an[9:]), P)
+        _ffi.memmove(P, _polarizer("analyzer", an).analyzer, _ffi.sizeof(P))
     elif an in ("none", "s", "p"):
         mask = {"none": [1.0, 1.0], "s": [1.0, 0.0], "p": [0.0, 1.0]}[an]
     else:
@@ -355,16 +363,27 @@ def _light(polarization, polarizer, stokes, analyzer):
     return w_in, mask, S, P, pol_name, an
 
 
-def _dispersive_one(plan, mat, sl, theta, general, C, P, w_in, mask, spec, xyz, mixed, idx):
-    """One angle of a dispersive slab: n(lambda) at every sample of the plan."""
-    _check(_lib.biref_spectrum_numeric_dispersive(plan, mat, sl, theta, spec), "numeric integration")
-    for w in range(2):
-        if general:
-            _check(_lib.biref_spectrum_numeric_dispersive_polarized(plan, mat, sl, theta, w, C, P, xyz),
-                   "numeric integration")
-        else:
-            _lib.biref_spectrum_mix(spec.R if w else spec.T, w_in, mask, xyz)
-        mixed[idx + (w,)] = list(xyz)
+def _material_integrator(sp, m, n_samples, eopts):
+    o = _ffi.new("biref_integrator_options *")
+    _lib.biref_integrator_options_default(o)
+    o.method = m
+    if m == _lib.BIREF_METHOD_NUMERIC:
+        o.samples = n_samples
+    o.expansion = eopts[0]
+    itp = _ffi.new("biref_integrator **")
+    _call("integrator", _lib.biref_integrator_create, sp, o, itp)
+    return _ffi.gc(itp[0], _lib.biref_integrator_destroy)
+
+
+def _dispersive_one(it, mat, sl, theta, light, spec, mixed, orders, idx):
+    """One angle of a dispersive slab through the integrator (material.h): the numeric methods
+    sample n(lambda), the closed-form ones linearise each band's phases (or integrate exactly)."""
+    _check(_lib.biref_integrate_material_spectrum(it, mat, sl, theta, spec), "integration")
+    out = _ffi.new("biref_integration *")
+    _check(_lib.biref_integrate_material(it, mat, sl, theta, _lib.BIREF_SIDE_BOTH, light, out), "integration")
+    mixed[idx + (0,)] = list(out.T)
+    mixed[idx + (1,)] = list(out.R)
+    orders[idx + (0,)], orders[idx + (1,)] = out.order_used[0], out.order_used[1]
 
 
 def spectrum(eta_o=None, eta_e=None, axis=None, thickness_mm=None, thickness_um=None, thickness_nm=None,
@@ -385,9 +404,6 @@ def spectrum(eta_o=None, eta_e=None, axis=None, thickness_mm=None, thickness_um=
     if axis is None:
         raise ValueError("missing axis")
     mat = _material(material, eta_o, eta_e)
-    if mat and m in (_lib.BIREF_METHOD_ANALYTIC, _lib.BIREF_METHOD_EXPANSION):
-        raise ValueError(f"material: the {method} method does not take dispersion yet; use method numeric or "
-                         "ground-truth")
     if samples is not None and m != _lib.BIREF_METHOD_NUMERIC:
         raise ValueError(f"samples: only valid with method numeric (method is {method})")
     if (order is not None or tolerance is not None) and m != _lib.BIREF_METHOD_EXPANSION:
@@ -451,6 +467,14 @@ def spectrum(eta_o=None, eta_e=None, axis=None, thickness_mm=None, thickness_um=
         _lib.biref_light_set_analyzer(light, P)
         res = _ffi.new("biref_integration *")
     band = _material_band(mat, cfg.lambda_min_nm, cfg.lambda_max_nm) if mat else None
+    if mat:
+        it = _material_integrator(sp, m, n_samples, eopts)
+        light = _ffi.new("biref_light *")
+        if general:  # as the command line: the coherency and the analyzer (diag(mask) unless given)
+            _lib.biref_light_coherency(C, light)
+            _lib.biref_light_set_analyzer(light, P)
+        else:
+            _check(_lib.biref_light_sp(w_in, mask, light), "light")
     thetas = _np.asarray(theta_deg, dtype=float)
     spec = _ffi.new("biref_spectrum *")
     T_all = _np.empty(thetas.shape + (2, 2, 3))
@@ -462,7 +486,7 @@ def spectrum(eta_o=None, eta_e=None, axis=None, thickness_mm=None, thickness_um=
     orders = _np.full(thetas.shape + (2,), -1, dtype=int)
     for idx in _np.ndindex(thetas.shape):
         if mat:
-            _dispersive_one(plan, mat, sl, _theta_rad(thetas[idx]), general, C, P, w_in, mask, spec, xyz, mixed, idx)
+            _dispersive_one(it, mat, sl, _theta_rad(thetas[idx]), light, spec, mixed, orders, idx)
             T_all[idx] = _np.array(_ffi.unpack(_ffi.cast("double *", spec.T), 12)).reshape(2, 2, 3)
             R_all[idx] = _np.array(_ffi.unpack(_ffi.cast("double *", spec.R), 12)).reshape(2, 2, 3)
             continue
@@ -600,7 +624,7 @@ def render(scene, method="analytic", width=None, height=None, samples=None, orde
             opt.expansion.tolerance = float(tolerance)
     opt.threads = int(threads)
     rp = _ffi.new("biref_renderer **")
-    s = _lib.biref_renderer_create(sc, opt, rp, msg, _MSG)
+    s = _lib.biref_renderer_create(_default_sp(), sc, opt, rp, msg, _MSG)
     if s != _lib.BIREF_OK:
         _msg_error(s, msg)
     r = _ffi.gc(rp[0], _lib.biref_renderer_destroy)
@@ -798,11 +822,7 @@ def photoelastic(preset="disk", stress_grid=None, thickness_mm=None, radius_mm=N
     fw, fh = fld.frame[1] - fld.frame[0], (fld.frame[3] - fld.frame[2]) * _math.cos(io.tilt)
     io.width = int(size) if fw >= fh else max(1, round(size * fw / fh))
     io.height = max(1, round(size * fh / fw)) if fw >= fh else int(size)
-    sp = _ffi.NULL
-    if light == "white":
-        spp = _ffi.new("biref_spectral **")
-        _call("spectral tables", _lib.biref_spectral_create, _ffi.NULL, spp)
-        sp = _ffi.gc(spp[0], _lib.biref_spectral_destroy)
+    sp = _default_sp() if light == "white" else _ffi.NULL
     n = io.width * io.height
     xyz = _ffi.new("float[]", n * 3)
     render = _lib.biref_pe_render_prefiltered if antialias == "prefilter" else _lib.biref_pe_render

@@ -238,8 +238,12 @@ def test_spectrum_with_a_material_matches_cli():
                    "--theta-deg", "30", "--method", "numeric", "--spectral-samples", "96", "--polarizer", "linear:45",
                    "--analyzer", "linear:-45")
     assert_same(got, ref, 1e-12)
-    with pytest.raises(ValueError, match="dispersion"):
-        biref.spectrum(material="calcite", axis=(0, 0, 1), thickness_um=10)
+    # The closed-form methods take dispersion too (linearised per band, or exact where not).
+    got = biref.spectrum(material="calcite", axis=(0.5, 0.7071, 0.5), thickness_um=50, theta_deg=[10.0, 30.0],
+                         method="expansion", polarization="s", analyzer="p")
+    ref = cli_json("spectrum", "--material", "calcite", "--axis", "0.5,0.7071,0.5", "--thickness-um", "50",
+                   "--theta-deg", "30", "--method", "expansion", "--polarization", "s", "--analyzer", "p")
+    assert np.allclose(got["mixed"]["T_xyz"][1], ref["mixed"]["T_xyz"], atol=1e-12)
     with pytest.raises(ValueError, match="unknown material"):
         biref.slab(material="unobtainium", axis=(0, 0, 1), thickness_um=10)
     with pytest.raises(ValueError, match="eta_o"):

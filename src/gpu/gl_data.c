@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "biref/gpu.h"
-#include "render/vec3.h"
+#include "shading/vec3.h"
 #include "spectral/spectral_internal.h"
 
 extern const char biref_gl_shader_text[];
@@ -109,7 +109,7 @@ void biref_gl_scene_uniforms(const biref_scene *scene, const biref_spectral *sp,
     emit1(fn, user, "u_exposure", cam->exposure);
     emit1(fn, user, "u_eta_medium", scene->eta_medium);
 
-    /* Slabs: local z = tangent x normal; optic axis to world, as biref_renderer_create. */
+    /* Slabs: local z = tangent x normal; optic axis to world, as the CPU renderer. */
     const int ns = scene->n_slabs;
     const biref_scene_slab *S = scene->slabs;
     emit1(fn, user, "u_n_slabs", ns);
@@ -155,16 +155,16 @@ void biref_gl_scene_uniforms(const biref_scene *scene, const biref_spectral *sp,
 
     /* Polarisation: the paper's s/p model as a diagonal coherency matrix and mask, world-fixed
      * polarizers as directions (docs/SCENES.md). */
-    const biref_polarization *pol = &scene->polarization;
-    const biref_filter *fil = &scene->filter;
-    double pv[4] = {pol->type == BIREF_POL_LINEAR, pol->type == BIREF_POL_SP ? pol->s : 0.5,
-                    pol->type == BIREF_POL_SP ? pol->p : 0.5, fil->type == BIREF_FILTER_LINEAR};
-    double mask[2] = {fil->type == BIREF_FILTER_P ? 0.0 : 1.0, fil->type == BIREF_FILTER_S ? 0.0 : 1.0};
+    const biref_light *l = &scene->light;
+    const int sp_mask = l->has_analyzer && !l->world_analyzer;
+    double pv[4] = {l->world_polarizer, l->world_polarizer ? 0.5 : creal(l->C[0][0]),
+                    l->world_polarizer ? 0.5 : creal(l->C[1][1]), l->world_analyzer};
+    double mask[2] = {sp_mask ? creal(l->P[0][0]) : 1.0, sp_mask ? creal(l->P[1][1]) : 1.0};
     double zero[3] = {0, 0, 0};
     emitv(fn, user, "u_pol", 4, pv);
     emitv(fn, user, "u_mask", 2, mask);
-    emitv(fn, user, "u_pol_dir", 3, pol->type == BIREF_POL_LINEAR ? pol->direction : zero);
-    emitv(fn, user, "u_filter_dir", 3, fil->type == BIREF_FILTER_LINEAR ? fil->direction : zero);
+    emitv(fn, user, "u_pol_dir", 3, l->world_polarizer ? l->polarizer_axis : zero);
+    emitv(fn, user, "u_filter_dir", 3, l->world_analyzer ? l->analyzer_axis : zero);
 
     /* XYZ (white E) -> linear sRGB, row by row, from the library's own conversion. */
     float m[9];

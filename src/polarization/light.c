@@ -39,6 +39,7 @@ biref_status biref_light_stokes(const double stokes[4], biref_light *out)
 
 void biref_light_set_analyzer(biref_light *l, const double complex P[2][2])
 {
+    l->world_analyzer = 0;
     if (!P) {
         memset(l->P, 0, sizeof l->P);
         l->has_analyzer = 0;

@@ -2,7 +2,7 @@
 #include <math.h>
 
 #include "render/render_internal.h"
-#include "render/vec3.h"
+#include "shading/vec3.h"
 
 void biref_render_camera_init(render_camera *c, const biref_camera *cam)
 {

@@ -5,7 +5,7 @@
 
 #include "render/footprint_legs.h"
 #include "render/render_internal.h"
-#include "render/vec3.h"
+#include "shading/vec3.h"
 
 /* The leg paths of a unit ray (footprint_legs.h); 0 if the ray is edge-on to the slab. */
 static int leg_opls(const biref_leg_consts *k, const double dir[3], double opl[4])

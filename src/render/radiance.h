@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "render/render_internal.h"
-#include "render/vec3.h"
+#include "shading/vec3.h"
 
 static inline void render_mix3(const double a[3], const double b[3], double t, double o[3])
 {

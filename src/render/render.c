@@ -11,7 +11,7 @@
 #include "render/render_internal.h"
 #include "render/render_tile.h"
 #include "spectral/integrator_internal.h"
-#include "render/vec3.h"
+#include "shading/vec3.h"
 
 void biref_render_options_default(biref_render_options *opt)
 {
@@ -23,40 +23,25 @@ void biref_render_options_default(biref_render_options *opt)
     opt->supersample = 1;
 }
 
-biref_status biref_renderer_create(const biref_scene *scene, const biref_render_options *opt, biref_renderer **out,
-                                   char *msg, size_t msg_len)
+/* The options that are the renderer's own; the method's are the shader's (integrator.h). */
+static biref_status check_render_options(const biref_render_options *opt, char *msg, size_t msg_len)
 {
-    if (!out) return BIREF_ERR_INVALID;
-    *out = NULL;
-    if (!scene || !opt) return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "no scene or options");
-    biref_status s = biref_scene_validate(scene, msg, msg_len);
-    if (s) return s;
-    if (opt->method != BIREF_METHOD_ANALYTIC && opt->method != BIREF_METHOD_NUMERIC &&
-        opt->method != BIREF_METHOD_GROUND_TRUTH && opt->method != BIREF_METHOD_EXPANSION)
-        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "unknown spectral method");
-    if (opt->method == BIREF_METHOD_NUMERIC && (opt->samples < 1 || opt->samples > BIREF_GROUND_TRUTH_SAMPLES * 4))
-        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "samples must be between 1 and 65536");
     if (opt->threads < 0 || opt->threads > 1024)
-        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "threads must be between 0 and 1024");
+        return biref_fail(msg, msg_len, "threads must be between 0 and 1024");
     if (opt->antialias != BIREF_ANTIALIAS_NONE && opt->antialias != BIREF_ANTIALIAS_PREFILTER)
-        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "unknown anti-aliasing mode");
+        return biref_fail(msg, msg_len, "unknown anti-aliasing mode");
     if (opt->antialias == BIREF_ANTIALIAS_PREFILTER && opt->method != BIREF_METHOD_ANALYTIC &&
         opt->method != BIREF_METHOD_EXPANSION)
-        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len,
-                                 "the prefilter anti-aliasing needs --method analytic or expansion (numeric methods "
-                                 "have no phase table)");
+        return biref_fail(msg, msg_len,
+                          "the prefilter anti-aliasing needs the analytic or expansion method (numeric methods "
+                          "have no phase table)");
     if (opt->supersample < 1 || opt->supersample > BIREF_MAX_SUPERSAMPLE)
-        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "supersample must be between 1 and 64");
-    int world_fixed = scene->polarization.type == BIREF_POL_LINEAR || scene->filter.type == BIREF_FILTER_LINEAR;
-    if (opt->method == BIREF_METHOD_EXPANSION && opt->expansion.order < 0 &&
-        !(opt->expansion.tolerance > 0.0 && opt->expansion.tolerance < 1.0))
-        return biref_fail_status(BIREF_ERR_INVALID, msg, msg_len, "expansion tolerance must be in (0, 1)");
+        return biref_fail(msg, msg_len, "supersample must be between 1 and %d", BIREF_MAX_SUPERSAMPLE);
+    return BIREF_OK;
+}
 
-    biref_renderer *r = calloc(1, sizeof *r);
-    if (!r) return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
-    r->opt = *opt;
-    biref_render_camera_init(&r->cam, &scene->camera);
-    r->exposure = scene->camera.exposure;
+static void slabs_init(biref_renderer *r, const biref_scene *scene)
+{
     r->n_slabs = scene->n_slabs;
     for (int i = 0; i < scene->n_slabs; i++) {
         const biref_scene_slab *in = &scene->slabs[i];
@@ -78,6 +63,10 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
         sl->base.eta_i = scene->eta_medium;
         memcpy(sl->base.axis, in->axis, sizeof sl->base.axis);
     }
+}
+
+static void panels_init(biref_renderer *r, const biref_scene *scene)
+{
     r->n_panels = scene->n_panels;
     for (int i = 0; i < scene->n_panels; i++) {
         const biref_panel *in = &scene->panels[i];
@@ -90,35 +79,41 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
         p->half_h = 0.5 * in->size[1];
         biref_linear_srgb_to_xyz(in->radiance, p->radiance_xyz);
     }
+}
+
+biref_status biref_renderer_create(const biref_spectral *sp, const biref_scene *scene, const biref_render_options *opt,
+                                   biref_renderer **out, char *msg, size_t msg_len)
+{
+    if (!out) return BIREF_ERR_INVALID;
+    *out = NULL;
+    if (!sp || !scene || !opt) return biref_fail(msg, msg_len, "no spectral context, scene or options");
+    biref_status s = biref_scene_validate(scene, msg, msg_len);
+    if (!s) s = check_render_options(opt, msg, msg_len);
+    if (s) return s;
+
+    biref_renderer *r = calloc(1, sizeof *r);
+    if (!r) return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
+    r->opt = *opt;
+    biref_render_camera_init(&r->cam, &scene->camera);
+    r->exposure = scene->camera.exposure;
+    slabs_init(r, scene);
+    panels_init(r, scene);
     biref_render_env_init(&r->env, &scene->env);
-    r->pol = scene->polarization;
-    r->filter = scene->filter;
-    r->world_fixed = world_fixed;
-    r->w_in[0] = scene->polarization.type == BIREF_POL_SP ? scene->polarization.s : 0.5;
-    r->w_in[1] = scene->polarization.type == BIREF_POL_SP ? scene->polarization.p : 0.5;
-    r->mask[0] = scene->filter.type == BIREF_FILTER_P ? 0.0 : 1.0;
-    r->mask[1] = scene->filter.type == BIREF_FILTER_S ? 0.0 : 1.0;
-    r->passthrough_sp = biref_render_passthrough_sp(r);
     r->tile_isa = biref_render_tile_isa();
 
-    biref_spectral_config cfg;
-    biref_spectral_config_default(&cfg);
-    char why[BIREF_MSG_SIZE] = "";
-    s = biref_light_sp(r->w_in, r->mask, &r->light);
-    if (!s) s = biref_spectral_create(&cfg, &r->sp, why, sizeof why);
-    if (!s) {
-        biref_integrator_options io;
-        biref_integrator_options_default(&io);
-        io.method = opt->method;
-        io.samples = opt->samples;
-        io.expansion = opt->expansion;
-        s = biref_integrator_create(r->sp, &io, &r->integrator, why, sizeof why);
+    biref_integrator_options io;
+    biref_integrator_options_default(&io);
+    io.method = opt->method;
+    io.samples = opt->samples;
+    io.expansion = opt->expansion;
+    s = biref_shader_create(sp, &io, &scene->light, &r->shader, msg, msg_len);
+    if (!s && opt->antialias == BIREF_ANTIALIAS_PREFILTER) {
+        s = biref_phase_prefilter_create(sp, &r->prefilter);
+        if (s) biref_fail_status(s, msg, msg_len, "out of memory");
     }
-    if (!s && opt->antialias == BIREF_ANTIALIAS_PREFILTER) s = biref_phase_prefilter_create(r->sp, &r->prefilter);
     if (s) {
         biref_renderer_destroy(r);
-        return biref_fail_status(s, msg, msg_len, "cannot set up the spectral integration: %s",
-                                 why[0] ? why : biref_status_string(s));
+        return s;
     }
     *out = r;
     return BIREF_OK;
@@ -127,9 +122,8 @@ biref_status biref_renderer_create(const biref_scene *scene, const biref_render_
 void biref_renderer_destroy(biref_renderer *r)
 {
     if (!r) return;
-    biref_integrator_destroy(r->integrator);
+    biref_shader_destroy(r->shader);
     biref_phase_prefilter_destroy(r->prefilter);
-    biref_spectral_destroy(r->sp);
     free(r);
 }
 
@@ -232,7 +226,7 @@ biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_e
     long slab_pixels = 0, fallbacks = 0, nonfinite = 0;
     /* One sample per pixel and the paper's light: tiles of pixels in lanes, the slab hits in the
      * integrator's packets (the analytic method's SIMD kernel, point or prefiltered look-ups). */
-    const int packets = r->opt.supersample == 1 && !r->world_fixed;
+    const int packets = r->opt.supersample == 1 && !r->shader->world_fixed;
     int done = 0;
     /* Rows are independent and every pixel is computed the same way on any thread, so the
      * image does not depend on the thread count; dynamic scheduling balances rows that miss

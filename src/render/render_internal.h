@@ -8,12 +8,13 @@
 #include "biref/integrator.h"
 #include "biref/render.h"
 #include "biref/shading.h"
+#include "shading/shader_internal.h"
 #include "spectral/phase_prefilter.h"
 
 /* Rays leave surfaces from exactly on them; hits closer than this are the surface itself. */
 #define BIREF_RENDER_RAY_EPS 1e-9
 /* biref_slab_prepare needs theta < pi/2; a ray grazing a slab is clamped just below. */
-#define BIREF_RENDER_THETA_MAX (0.5 * M_PI - 1e-7)
+#define BIREF_RENDER_THETA_MAX BIREF_SHADING_THETA_MAX
 
 typedef struct {
     double origin[3];
@@ -51,18 +52,9 @@ struct biref_renderer {
     render_panel panels[BIREF_SCENE_MAX_PANELS];
     render_env env;
     double exposure;
-    /* Polarisation. world_fixed: the light or the filter is a world-fixed linear polarizer,
-     * so every ray needs its own coherency matrix / analyzer (numeric methods only). */
-    biref_polarization pol;
-    biref_filter filter;
-    int world_fixed;
-    double w_in[2], mask[2]; /* s/p light fractions and analyzer mask (paper's model) */
-    biref_light light;       /* the same as a light, for rays that are not world-fixed */
-    biref_spectral *sp;
-    biref_integrator *integrator;
+    biref_shader *shader;             /* the method's integrator under the scene's light */
     biref_phase_prefilter *prefilter; /* antialias prefilter: analytic and expansion */
-    double passthrough_sp; /* biref_render_passthrough_sp */
-    int tile_isa;          /* biref_render_tile_isa */
+    int tile_isa;                     /* biref_render_tile_isa */
 };
 
 /* camera.c */
@@ -87,22 +79,9 @@ int biref_render_shade_pixel(const biref_renderer *r, const double dir[3], const
 const render_slab *biref_render_nearest_slab(const biref_renderer *r, const double dir[3], double *t);
 /* A pixel that hits no slab: the background through the filter. */
 void biref_render_background(const biref_renderer *r, const double dir[3], double xyz[3]);
-/* The background's pass-through factor of the paper's light model (not world-fixed): the same for
- * every ray, and equal to biref_render_background's. */
-double biref_render_passthrough_sp(const biref_renderer *r);
-/* The slab's factors when its evaluation failed: a perfect mirror seen through the filter. */
-void biref_render_failed_hit(const biref_renderer *r, const biref_hit_frames *fr, double tT[3], double tR[3]);
 /* A slab pixel's colour at hit point hp from the slab's transmission and reflection factors. */
 void biref_render_hit_colour(const biref_renderer *r, const double hp[3], const double dir[3],
                              const biref_hit_frames *fr, const double tT[3], const double tR[3], double xyz[3]);
-/* The slab's two evaluations at one hit (transmission from behind, reflection from the mirror
- * direction) in the hit's frames; non-zero when either fails (outputs then undefined). */
-int biref_render_shade_hit(const biref_renderer *r, const biref_hit_frames *f, double T_xyz[3], double R_xyz[3]);
-
-/* hit_frames.c: the paper's frames of the unit view ray dir at a hit on a slab with unit normal,
- * unit tangent and unit world optic axis; base gives the slab's constants. */
-void biref_render_hit_frames(const double normal[3], const double tangent[3], const double axis_world[3],
-                       const biref_slab *base, const double dir[3], biref_hit_frames *f);
 
 /* footprint.c: the change of each leg type's optical path between the ray dir and the rays
  * dir + dx, dir + dy (the neighbouring samples) on the slab sl, in its transmission frame. */

@@ -15,7 +15,8 @@
 #include "biref/render.h"
 #include "io/json_strict.h"
 #include "render/scene_fields.h"
-#include "render/vec3.h"
+#include "render/scene_light.h"
+#include "shading/vec3.h"
 
 static biref_status parse_camera(pctx *c, const cJSON *cam, biref_camera *out)
 {
@@ -149,7 +150,7 @@ static biref_status parse_environment(pctx *c, const cJSON *env, biref_environme
     return s;
 }
 
-static biref_status parse_polarization(pctx *c, const cJSON *pol, biref_polarization *out)
+static biref_status parse_polarization(pctx *c, const cJSON *pol, scene_pol *out)
 {
     static const char *const keys[] = {"type", "s", "p", "direction", NULL};
     const char *w = "light.polarization";
@@ -159,10 +160,10 @@ static biref_status parse_polarization(pctx *c, const cJSON *pol, biref_polariza
     if (!s) s = biref_field_get_string(c, pol, w, "type", 1, &type);
     if (s) return s;
     if (!strcmp(type, "unpolarized")) {
-        out->type = BIREF_POL_UNPOLARIZED;
+        out->type = POL_UNPOLARIZED;
         out->s = out->p = 0.5;
     } else if (!strcmp(type, "sp")) {
-        out->type = BIREF_POL_SP;
+        out->type = POL_SP;
         s = biref_field_get_number(c, pol, w, "s", 1, &out->s);
         if (!s) s = biref_field_get_number(c, pol, w, "p", 1, &out->p);
         if (s) return s;
@@ -173,25 +174,25 @@ static biref_status parse_polarization(pctx *c, const cJSON *pol, biref_polariza
         out->s /= sum;
         out->p /= sum;
     } else if (!strcmp(type, "linear")) {
-        out->type = BIREF_POL_LINEAR;
+        out->type = POL_LINEAR;
         s = biref_field_get_direction(c, pol, w, "direction", 1, out->direction);
         if (s) return s;
     } else {
         return FAIL(c, "light.polarization.type", "unknown type '%s' (expected unpolarized, sp or linear)", type);
     }
     /* Fields that belong to another type are mistakes (e.g. "s" with type linear). */
-    if (out->type != BIREF_POL_SP) {
+    if (out->type != POL_SP) {
         if (cJSON_GetObjectItemCaseSensitive(pol, "s"))
             return FAIL(c, "light.polarization.s", "only allowed with type sp");
         if (cJSON_GetObjectItemCaseSensitive(pol, "p"))
             return FAIL(c, "light.polarization.p", "only allowed with type sp");
     }
-    if (out->type != BIREF_POL_LINEAR && cJSON_GetObjectItemCaseSensitive(pol, "direction"))
+    if (out->type != POL_LINEAR && cJSON_GetObjectItemCaseSensitive(pol, "direction"))
         return FAIL(c, "light.polarization.direction", "only allowed with type linear");
     return BIREF_OK;
 }
 
-static biref_status parse_filter(pctx *c, const cJSON *f, biref_filter *out)
+static biref_status parse_filter(pctx *c, const cJSON *f, scene_filter *out)
 {
     static const char *const keys[] = {"type", "direction", NULL};
     const char *w = "filter";
@@ -201,22 +202,22 @@ static biref_status parse_filter(pctx *c, const cJSON *f, biref_filter *out)
     if (!s) s = biref_field_get_string(c, f, w, "type", 1, &type);
     if (s) return s;
     if (!strcmp(type, "none"))
-        out->type = BIREF_FILTER_NONE;
+        out->type = FILTER_NONE;
     else if (!strcmp(type, "s"))
-        out->type = BIREF_FILTER_S;
+        out->type = FILTER_S;
     else if (!strcmp(type, "p"))
-        out->type = BIREF_FILTER_P;
+        out->type = FILTER_P;
     else if (!strcmp(type, "linear"))
-        out->type = BIREF_FILTER_LINEAR;
+        out->type = FILTER_LINEAR;
     else
         return FAIL(c, "filter.type", "unknown type '%s' (expected none, s, p or linear)", type);
-    if (out->type == BIREF_FILTER_LINEAR) return biref_field_get_direction(c, f, w, "direction", 1, out->direction);
+    if (out->type == FILTER_LINEAR) return biref_field_get_direction(c, f, w, "direction", 1, out->direction);
     if (cJSON_GetObjectItemCaseSensitive(f, "direction"))
         return FAIL(c, "filter.direction", "only allowed with type linear");
     return BIREF_OK;
 }
 
-static biref_status parse_light(pctx *c, const cJSON *light, biref_scene *sc)
+static biref_status parse_light(pctx *c, const cJSON *light, biref_scene *sc, scene_pol *pol)
 {
     static const char *const keys[] = {"panel", "panels", "environment", "polarization", NULL};
     const char *w = "light";
@@ -253,7 +254,7 @@ static biref_status parse_light(pctx *c, const cJSON *light, biref_scene *sc)
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(light, "environment");
     if (v && (s = parse_environment(c, v, &sc->env))) return s;
     v = cJSON_GetObjectItemCaseSensitive(light, "polarization");
-    if (v && (s = parse_polarization(c, v, &sc->polarization))) return s;
+    if (v && (s = parse_polarization(c, v, pol))) return s;
     return BIREF_OK;
 }
 
@@ -274,9 +275,8 @@ static void scene_defaults(biref_scene *sc)
     v3_set(sc->env.check_a, 0.80, 0.80, 0.80);
     v3_set(sc->env.check_b, 0.10, 0.10, 0.10);
     sc->env.check_size = 0.5;
-    sc->polarization.type = BIREF_POL_UNPOLARIZED;
-    sc->polarization.s = sc->polarization.p = 0.5;
-    sc->filter.type = BIREF_FILTER_NONE;
+    static const double half[2] = {0.5, 0.5}, pass[2] = {1.0, 1.0};
+    biref_light_sp(half, pass, &sc->light);
 }
 
 biref_status biref_scene_parse(const char *text, size_t len, biref_scene *out, char *msg, size_t msg_len)
@@ -290,6 +290,8 @@ biref_status biref_scene_parse(const char *text, size_t len, biref_scene *out, c
 
     biref_scene sc;
     scene_defaults(&sc);
+    scene_pol pol = {POL_UNPOLARIZED, 0.5, 0.5, {0, 0, 0}};
+    scene_filter filter = {FILTER_NONE, {0, 0, 0}};
     static const char *const keys[] = {"camera", "medium", "slabs", "light", "filter", NULL};
     if (!cJSON_IsObject(root)) {
         s = FAIL(c, "scene", "expected a JSON object at the top level, got %s", biref_field_type_name(root));
@@ -326,9 +328,10 @@ biref_status biref_scene_parse(const char *text, size_t len, biref_scene *out, c
     }
     sc.n_slabs = n;
     if ((s = biref_field_member(c, root, "", "light", 0, &v))) goto done;
-    if (v && (s = parse_light(c, v, &sc))) goto done;
+    if (v && (s = parse_light(c, v, &sc, &pol))) goto done;
     if ((s = biref_field_member(c, root, "", "filter", 0, &v))) goto done;
-    if (v && (s = parse_filter(c, v, &sc.filter))) goto done;
+    if (v && (s = parse_filter(c, v, &filter))) goto done;
+    biref_scene_light(&pol, &filter, &sc.light);
     if ((s = biref_scene_validate(&sc, msg, msg_len))) goto done;
     *out = sc;
 done:

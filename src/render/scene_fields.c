@@ -5,7 +5,7 @@
 #include <math.h>
 
 #include "io/json_strict.h"
-#include "render/vec3.h"
+#include "shading/vec3.h"
 
 const char *biref_field_type_name(const cJSON *v)
 {

@@ -5,7 +5,8 @@
 
 #include "biref/render.h"
 #include "render/scene_fields.h"
-#include "render/vec3.h"
+#include "render/scene_light.h"
+#include "shading/vec3.h"
 
 static int finite_vec(const double *v, int n)
 {
@@ -123,26 +124,5 @@ biref_status biref_scene_validate(const biref_scene *sc, char *msg, size_t msg_l
         return FAIL(c, "camera.exposure", "%g times the brightest light (%g) must be at most 1e30", sc->camera.exposure,
                     brightest);
 
-    const biref_polarization *pol = &sc->polarization;
-    switch (pol->type) {
-    case BIREF_POL_UNPOLARIZED: break;
-    case BIREF_POL_SP:
-        if (!(isfinite(pol->s) && isfinite(pol->p) && pol->s >= 0 && pol->p >= 0 && fabs(pol->s + pol->p - 1) < 1e-9))
-            return FAIL(c, "light.polarization", "s and p must be non-negative fractions summing to 1");
-        break;
-    case BIREF_POL_LINEAR:
-        if (!unit_vec(pol->direction)) return FAIL(c, "light.polarization.direction", "must be a unit vector");
-        break;
-    default: return FAIL(c, "light.polarization.type", "unknown type");
-    }
-    switch (sc->filter.type) {
-    case BIREF_FILTER_NONE:
-    case BIREF_FILTER_S:
-    case BIREF_FILTER_P: break;
-    case BIREF_FILTER_LINEAR:
-        if (!unit_vec(sc->filter.direction)) return FAIL(c, "filter.direction", "must be a unit vector");
-        break;
-    default: return FAIL(c, "filter.type", "unknown type");
-    }
-    return BIREF_OK;
+    return biref_scene_light_check(&sc->light, msg, msg_len);
 }

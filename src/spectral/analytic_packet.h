@@ -31,26 +31,44 @@ typedef struct {
     double eta_o, eta_e, axis[3], thickness_nm, eta_i, K;
 } biref_packet_hit;
 
+/* A hit's light outside the paper's model, in the kernel's form: a real incident coherency
+ * (C00, C01, C11) in the s/p basis of the incident wave and a real analyzer (P00, P01, P10, P11),
+ * [in][out], in the s/p basis of the outgoing wave, for the hit's transmission (T: its state) and
+ * its reflection (R: the flipped state): e.g. a world-fixed linear polarizer and analyzer
+ * resolved in the hit's two frames. */
+typedef struct {
+    double C[3], P[4];
+} biref_packet_light;
+typedef struct {
+    biref_packet_light T, R;
+} biref_packet_hit_light;
+
 /* T[k] and R[k] as biref_integrate_hit gives them (transmission of the hit's state, reflection
  * of its flip), up to rounding, for the hits whose scalar[k] is 0; scalar[k] = 1 marks a hit the
  * kernel cannot take (an evanescent mode, the optic-axis degeneracy, a near-singular interface
  * system, the coherent regime): its T and R are undefined and it goes to the scalar path.
  * fp: NULL for point look-ups, else one footprint per hit (all of one prefilter, fp[k].pf the
  * same non-NULL table): every phase integral is then its box average over the hit's footprint,
- * as biref_integrate_footprint gives it (transmission with fp[k], reflection with its flip). */
+ * as biref_integrate_footprint gives it (transmission with fp[k], reflection with its flip).
+ * lights: NULL for the paper's light (w_in, mask) on every hit, else one light per hit (w_in and
+ * mask unused): the general terms (analytic_general.c) with the phase integrals as above. */
 typedef void (*biref_packet_hits_kernel)(const biref_spectral *sp, const double w_in[2], const double mask[2],
                                          const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
-                                         unsigned char *scalar, const biref_opl_footprint *fp);
+                                         unsigned char *scalar, const biref_opl_footprint *fp,
+                                         const biref_packet_hit_light *lights);
 
 void biref_packet_hits_baseline(const biref_spectral *sp, const double w_in[2], const double mask[2],
                                 const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
-                                unsigned char *scalar, const biref_opl_footprint *fp);
+                                unsigned char *scalar, const biref_opl_footprint *fp,
+                                const biref_packet_hit_light *lights);
 void biref_packet_hits_avx2(const biref_spectral *sp, const double w_in[2], const double mask[2],
                             const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
-                            unsigned char *scalar, const biref_opl_footprint *fp);
+                            unsigned char *scalar, const biref_opl_footprint *fp,
+                                const biref_packet_hit_light *lights);
 void biref_packet_hits_avx512(const biref_spectral *sp, const double w_in[2], const double mask[2],
                               const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
-                              unsigned char *scalar, const biref_opl_footprint *fp);
+                              unsigned char *scalar, const biref_opl_footprint *fp,
+                                const biref_packet_hit_light *lights);
 
 /* The instruction sets, fastest last. */
 typedef enum {

@@ -95,7 +95,15 @@ const biref_numeric_plan *biref_coherent_plan(const biref_spectral *sp, const bi
             if (exp(-k_lo * fabs(cimag(rt))) > EVANESCENT_COUPLING) rt_min = fmin(rt_min, fabs(creal(rt)));
         }
     if (!coupled && !(rt_min < COHERENT_ROUND_TRIP_NM)) return NULL;
+    return biref_resolving_plan(sp, st);
+}
 
+const biref_numeric_plan *biref_resolving_plan(const biref_spectral *sp, const biref_slab_state *st)
+{
+    const double k_lo = 2.0 * M_PI / sp->cfg.lambda_max_nm;
+    double rt_max = 0.0;
+    for (int x = 0; x < 2; x++)
+        for (int y = 0; y < 2; y++) rt_max = fmax(rt_max, fabs(creal(st->opl_down[x] + st->opl_up[y])));
     /* Highest significant optical path in |J(k)|^2: the order-0 retardances plus as many round
      * trips as it takes the round-trip amplitude to fall below the floor. */
     double rho = round_trip_norm(st, k_lo), orders;

@@ -171,6 +171,8 @@ biref_status biref_integrate_footprint(const biref_integrator *it, const biref_s
 {
     out->order_used[0] = out->order_used[1] = -1;
     if (!(sides & BIREF_SIDE_BOTH) || (sides & ~BIREF_SIDE_BOTH)) return BIREF_ERR_INVALID;
+    /* World-fixed polarizers have no matrices until a shader resolves them for a ray. */
+    if (biref_light_is_world_fixed(light)) return BIREF_ERR_INVALID;
     if (it->plan && light->sp_model && sides == BIREF_SIDE_BOTH) {
         /* Both sides of the paper's light: one pass over the wavelengths gives all four pairs of
          * both, cheaper than two polarized passes (one Jones evaluation per wavelength). */
@@ -254,7 +256,17 @@ void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_
                                  double (*R)[3], unsigned char *scalar)
 {
     if (it->hits && light->sp_model && (!fp || one_prefilter(fp, n)))
-        it->hits(it->sp, light->w_in, light->mask, hits, n, T, R, scalar, fp);
+        it->hits(it->sp, light->w_in, light->mask, hits, n, T, R, scalar, fp, NULL);
+    else
+        memset(scalar, 1, n);
+}
+
+void biref_integrate_packet_hits_lit(const biref_integrator *it, const biref_packet_hit *hits,
+                                     const biref_opl_footprint *fp, size_t n, const biref_packet_hit_light *lights,
+                                     double (*T)[3], double (*R)[3], unsigned char *scalar)
+{
+    if (it->hits && (!fp || one_prefilter(fp, n)))
+        it->hits(it->sp, NULL, NULL, hits, n, T, R, scalar, fp, lights);
     else
         memset(scalar, 1, n);
 }
@@ -268,3 +280,7 @@ biref_status biref_integrate_hit(const biref_integrator *it, const biref_slab_hi
 }
 
 const biref_numeric_plan *biref_integrator_plan(const biref_integrator *it) { return it->plan; }
+
+const biref_spectral *biref_integrator_spectral(const biref_integrator *it) { return it->sp; }
+
+const biref_expansion_opts *biref_integrator_expansion_opts(const biref_integrator *it) { return &it->xopts; }

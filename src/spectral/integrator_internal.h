@@ -2,6 +2,8 @@
 #ifndef BIREF_INTEGRATOR_INTERNAL_H
 #define BIREF_INTEGRATOR_INTERNAL_H
 
+#include <complex.h>
+
 #include "biref/experimental.h" /* the library is built with BIREF_EXPERIMENTAL_API */
 #include "biref/integrator.h"
 #include "spectral/analytic_packet.h"
@@ -27,6 +29,18 @@ void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_
                                  const biref_opl_footprint *fp, size_t n, const biref_light *light, double (*T)[3],
                                  double (*R)[3], unsigned char *scalar);
 
+/* The same door for a light outside the paper's model, one per hit (world-fixed polarizers: the
+ * renderer resolves its light in each hit's two frames, biref_light_at, and hands the real
+ * coherency and analyzer over as lights[k].T for the transmission and lights[k].R for the
+ * reflection of the flipped state). T[k], R[k] equal biref_integrate_hit's under those lights
+ * (biref_light_coherency + biref_light_set_analyzer of the same matrices) to rounding, for the
+ * hits whose scalar[k] is 0; scalar[k] = 1 as above (every hit when the integrator is not the
+ * analytic method's or the footprints are not of one prefilter). A light with complex entries
+ * (circular polarisation) has no packet form: shade it the scalar way. */
+void biref_integrate_packet_hits_lit(const biref_integrator *it, const biref_packet_hit *hits,
+                                     const biref_opl_footprint *fp, size_t n, const biref_packet_hit_light *lights,
+                                     double (*T)[3], double (*R)[3], unsigned char *scalar);
+
 /* One hit the scalar way (biref_slab_prepare_trusted, then T and R as above, over the footprint
  * fp unless it is NULL); the outputs are undefined unless it returns BIREF_OK. */
 biref_status biref_integrate_hit(const biref_integrator *it, const biref_slab_hit *hit, const biref_opl_footprint *fp,
@@ -35,6 +49,22 @@ biref_status biref_integrate_hit(const biref_integrator *it, const biref_slab_hi
 /* The numeric methods' plan (NULL for the analytic and expansion methods): the dispersive
  * integration (numeric_dispersive.c) samples at its wavelengths. */
 const biref_numeric_plan *biref_integrator_plan(const biref_integrator *it);
+/* The spectral context and the expansion's options (analytic_dispersive.c). */
+const biref_spectral *biref_integrator_spectral(const biref_integrator *it);
+const biref_expansion_opts *biref_integrator_expansion_opts(const biref_integrator *it);
+
+/* A dispersive material by the analytic method or the expansion (the integrator's), each band's
+ * phases linearised around its centroid (analytic_dispersive.c): the four pairs of both
+ * directions, and one direction under a general light (*order_used: the expansion's largest pair
+ * order over the bands, 0 in the coherent regime, -1 for the analytic method). The codes of
+ * biref_integrate_material. */
+biref_status biref_integrate_material_closed_form(const biref_integrator *it, const biref_material *m,
+                                                  const biref_slab *geometry, double theta, biref_spectrum *out);
+biref_status biref_integrate_material_closed_form_polarized(const biref_integrator *it, const biref_material *m,
+                                                            const biref_slab *geometry, double theta, int which,
+                                                            const double complex C[2][2],
+                                                            const double complex P[2][2], double xyz[3],
+                                                            int *order_used);
 
 /* The instruction set of the integrator's packet kernel (BIREF_SIMD_SCALAR: none). */
 biref_simd_isa biref_integrator_simd(const biref_integrator *it);

@@ -103,12 +103,20 @@ biref_status biref_spectrum_numeric_dispersive_polarized(const biref_numeric_pla
 
 static int finite3(const double v[3]) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
 
+/* The four pairs of both directions by the integrator's method: the numeric methods sample n(λ),
+ * the closed-form ones linearise each band's phases (analytic_dispersive.c). */
+static biref_status material_spectrum(const biref_integrator *it, const biref_material *m, const biref_slab *geometry,
+                                      double theta, biref_spectrum *out)
+{
+    const biref_numeric_plan *plan = biref_integrator_plan(it);
+    return plan ? biref_spectrum_numeric_dispersive(plan, m, geometry, theta, out)
+                : biref_integrate_material_closed_form(it, m, geometry, theta, out);
+}
+
 biref_status biref_integrate_material_spectrum(const biref_integrator *it, const biref_material *m,
                                                const biref_slab *geometry, double theta, biref_spectrum *out)
 {
-    const biref_numeric_plan *plan = biref_integrator_plan(it);
-    if (!plan) return BIREF_ERR_INVALID; /* the closed-form methods take no dispersion yet */
-    biref_status s = biref_spectrum_numeric_dispersive(plan, m, geometry, theta, out);
+    biref_status s = material_spectrum(it, m, geometry, theta, out);
     if (s != BIREF_OK) return s;
     for (int i = 0; i < 2; i++)
         for (int o = 0; o < 2; o++)
@@ -121,21 +129,25 @@ biref_status biref_integrate_material(const biref_integrator *it, const biref_ma
                                       biref_integration *out)
 {
     out->order_used[0] = out->order_used[1] = -1;
+    if (!(sides & BIREF_SIDE_BOTH) || (sides & ~BIREF_SIDE_BOTH)) return BIREF_ERR_INVALID;
     const biref_numeric_plan *plan = biref_integrator_plan(it);
-    if (!plan || !(sides & BIREF_SIDE_BOTH) || (sides & ~BIREF_SIDE_BOTH)) return BIREF_ERR_INVALID;
     if (light->sp_model) {
-        /* The paper's light mixes from the four pairs: one pass over the wavelengths. */
+        /* The paper's light mixes from the four pairs. */
         biref_spectrum x;
-        biref_status s = biref_spectrum_numeric_dispersive(plan, m, geometry, theta, &x);
+        biref_status s = material_spectrum(it, m, geometry, theta, &x);
         if (s != BIREF_OK) return s;
         if (sides & BIREF_SIDE_TRANSMISSION) biref_spectrum_mix(x.T, light->w_in, light->mask, out->T);
         if (sides & BIREF_SIDE_REFLECTION) biref_spectrum_mix(x.R, light->w_in, light->mask, out->R);
     } else {
+        const double complex(*C)[2] = (const double complex(*)[2])light->C;
+        const double complex(*P)[2] = light->has_analyzer ? (const double complex(*)[2])light->P : NULL;
         for (int w = 0; w < 2; w++) {
             if (!(sides & (w ? BIREF_SIDE_REFLECTION : BIREF_SIDE_TRANSMISSION))) continue;
-            biref_status s = biref_spectrum_numeric_dispersive_polarized(
-                plan, m, geometry, theta, w ? BIREF_REFLECTION : BIREF_TRANSMISSION, (const double complex(*)[2])light->C,
-                light->has_analyzer ? (const double complex(*)[2])light->P : NULL, w ? out->R : out->T);
+            const int which = w ? BIREF_REFLECTION : BIREF_TRANSMISSION;
+            double *xyz = w ? out->R : out->T;
+            biref_status s = plan ? biref_spectrum_numeric_dispersive_polarized(plan, m, geometry, theta, which, C, P, xyz)
+                                  : biref_integrate_material_closed_form_polarized(it, m, geometry, theta, which, C, P,
+                                                                                   xyz, &out->order_used[w]);
             if (s != BIREF_OK) return s;
         }
     }

@@ -129,6 +129,9 @@ biref_status biref_expansion_series_polarized(const biref_spectral *sp, const bi
  * (thin slabs, evanescent legs coupling the faces; src/spectral/coherent.c), or NULL when it
  * does. */
 const biref_numeric_plan *biref_coherent_plan(const biref_spectral *sp, const biref_slab_state *st);
+/* The plan that resolves the state's closed form (eq. 17) in any regime: the numeric samples
+ * biref_coherent_plan picks once it has decided the regime is coherent. */
+const biref_numeric_plan *biref_resolving_plan(const biref_spectral *sp, const biref_slab_state *st);
 /* For a state whose optical paths are all real: non-zero exactly when biref_coherent_plan
  * returns a plan (the slab is in the coherent regime), without computing the plan. */
 int biref_coherent_real_paths(const biref_slab_state *st);

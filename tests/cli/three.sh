@@ -50,11 +50,12 @@ expect_ok "changed cpu" render "$tmpdir/changed.json" -o "$tmpdir/changed-cpu.pn
 
 url="file://$PWD/$pkg/examples/index.html"
 pages=("$url?example=fig9c&width=$W&height=$H&view=canvas" "$tmpdir/fig9c-three.png")
-# Every mesh example (one page, one renderer: each program compiled once) and the application
+# Every mesh example (one page, one renderer: each program compiled once; small, as the
+# compile dominates) and the application
 # outside the repository, drawn without a WebGL error. They exercise no C code: the quick
 # (sanitizer) run leaves them out.
 if [ -z "${BIREF_TEST_QUICK:-}" ]; then
-  pages+=("$url?example=all&width=$W&height=$H&view=canvas" "$tmpdir/meshes.png")
+  pages+=("$url?example=all&width=80&height=45&view=canvas" "$tmpdir/meshes.png")
   [ -f "$app/index.html" ] && pages+=("file://$app/index.html" "$tmpdir/app.png")
 fi
 if ! /usr/bin/python3 tests/web/screenshot.py $W $H "${pages[@]}" 2>"$tmpdir/shot.err"; then

@@ -16,11 +16,18 @@ assert.equal(m.polarization, 'sp');
 assert.equal(m.polarizationS, 0.25);
 assert.equal(m.analyzer, 's');
 assert.equal(m.opticAxisSpace, 'tangent');
+const axis = new THREE.Vector3(0, 3, 4);
+const n = new BirefringentMaterial({ opticAxis: axis, roughness: 0.2 });
+assert.ok(Math.abs(n.opticAxis.y - 0.6) < 1e-12 && Math.abs(n.opticAxis.z - 0.8) < 1e-12, 'the axis is stored normalised');
+assert.equal(axis.y, 3, "the caller's vector is left as it is");
+assert.equal(n.roughness, 0.2, "MeshPhysicalMaterial's own parameters still apply");
+assert.throws(() => new BirefringentMaterial({ slabThickness: NaN }), RangeError);
 assert.equal(m.transmission, 1, 'the light behind comes through three.js transmission');
 
 for (const [key, bad] of [['ordinaryIOR', NaN], ['extraordinaryIOR', 0.5], ['surroundingIOR', Infinity],
   ['slabThickness', -1], ['polarization', 'circular'], ['polarizationS', 1.5], ['analyzer', 'x'],
-  ['opticAxisSpace', 'world']])
+  ['opticAxisSpace', 'world'], ['opticAxis', new THREE.Vector3(0, 0, 0)],
+  ['polarizerDirection', new THREE.Vector3(NaN, 0, 1)], ['analyzerDirection', [0, 1, 0]]])
   assert.throws(() => { m[key] = bad; }, RangeError, `${key} = ${bad} must be refused`);
 assert.equal(m.ordinaryIOR, 1.6, 'a refused value leaves the property as it was');
 

@@ -47,9 +47,14 @@ function slabMaterial(options) {
   });
 }
 
+// The mesh scenes' light: three.js's room environment and one directional light (the same in
+// every scene, so that their materials share programs).
 function roomEnvironment(scene) {
   scene.environment = pmrem.fromScene(new RoomEnvironment(), 0.04).texture;
   scene.background = new THREE.Color(0x202226);
+  const light = new THREE.DirectionalLight(0xffffff, 2.5);
+  light.position.set(1, 2, 1.5);
+  scene.add(light);
 }
 
 // ------------------------------------------------------------------------------ fig. 9c
@@ -92,9 +97,10 @@ function fig9c() {
       // The world optic axis in the plane's tangent frame (tangent, normal x tangent, normal).
       opticAxis: new THREE.Vector3(a.dot(t), a.dot(n.clone().cross(t)), a.dot(n)),
       polarization: pol[0] > 0.5 ? 'linear' : 'sp', polarizationS: pol[1],
-      polarizerDirection: vec('u_pol_dir'),
       analyzer: pol[3] > 0.5 ? 'linear' : mask[0] === 1 && mask[1] === 0 ? 's' : mask[0] === 0 ? 'p' : 'none',
-      analyzerDirection: vec('u_filter_dir'),
+      // Directions only for world-fixed filters (the s/p model exports zero vectors).
+      ...(pol[0] > 0.5 ? { polarizerDirection: vec('u_pol_dir') } : {}),
+      ...(pol[3] > 0.5 ? { analyzerDirection: vec('u_filter_dir') } : {}),
     });
     rectangle(i, 'slab', m);
   }
@@ -225,9 +231,6 @@ function polariscope() {
 function gem() {
   const scene = new THREE.Scene();
   roomEnvironment(scene);
-  const light = new THREE.DirectionalLight(0xffffff, 2.5);
-  light.position.set(1, 2, 1.5);
-  scene.add(light);
   const camera = new THREE.PerspectiveCamera(35, W / H, 0.01, 50);
   camera.position.set(0.9, 1.7, 1.3);
   camera.lookAt(0, 0, 0);

@@ -8,6 +8,8 @@ import {
 } from 'three';
 import { shaderSource, table, plans, presets } from './biref_data.js';
 
+const OWN_KEYS = ['ordinaryIOR', 'extraordinaryIOR', 'surroundingIOR', 'slabThickness', 'slabThicknessMap', 'opticAxis',
+  'opticAxisMap', 'opticAxisSpace', 'polarization', 'polarizationS', 'polarizerDirection', 'analyzer', 'analyzerDirection'];
 const POLARIZATIONS = { unpolarized: 0, sp: 1, linear: 2 };
 const ANALYZERS = { none: 0, s: 1, p: 2, linear: 3 };
 
@@ -107,10 +109,10 @@ const FRAGMENT_MAIN = `
     BirefLight bL;
     bL.pol_linear = biref_light.x > 1.5 ? 1.0 : 0.0;
     bL.pol_w = biref_light.x > 0.5 ? vec2(biref_light.y, 1.0 - biref_light.y) : vec2(0.5);
-    bL.pol_dir = normalize((viewMatrix * vec4(biref_polarizer_dir, 0.0)).xyz);
+    bL.pol_dir = (viewMatrix * vec4(biref_polarizer_dir, 0.0)).xyz; /* the shader projects; |dir| is 1 (setter) */
     bL.filter_linear = biref_light.z > 2.5 ? 1.0 : 0.0;
     bL.mask = biref_light.z > 1.5 ? vec2(0.0, 1.0) : biref_light.z > 0.5 ? vec2(1.0, 0.0) : vec2(1.0);
-    bL.filter_dir = normalize((viewMatrix * vec4(biref_analyzer_dir, 0.0)).xyz);
+    bL.filter_dir = (viewMatrix * vec4(biref_analyzer_dir, 0.0)).xyz;
     vec3 bTx, bRx;
     biref_shade_slab(bView, bN, bT, bAxis, vec3(biref_slab.xy, max(bThick, 0.0)), biref_slab.w, bL, bTx, bRx);
     /* Light from behind along the view ray: three.js's transmission target at this pixel (thin
@@ -186,9 +188,9 @@ export class BirefringentMaterial extends MeshPhysicalMaterial {
   }
 
   /** Optic axis in the tangent frame: x along the tangent (increasing u), y the bitangent
-   * (normal × tangent), z the normal. Normalised in the shader. */
+   * (normal × tangent), z the normal. Stored normalised. */
   get opticAxis() { return this.birefUniforms.biref_axis.value; }
-  set opticAxis(v) { this.birefUniforms.biref_axis.value.copy(v); }
+  set opticAxis(v) { this.birefUniforms.biref_axis.value.copy(unit('opticAxis', v)); }
 
   /** 'tangent' (default): opticAxis and opticAxisMap are in the tangent frame; 'object': in
    * the mesh's object space (a crystal whose axis does not follow the surface). */
@@ -219,18 +221,30 @@ export class BirefringentMaterial extends MeshPhysicalMaterial {
     this.birefUniforms.biref_light.value.y = v;
   }
 
-  /** World-space direction of a linear polarizer (polarization 'linear'). */
+  /** World-space direction of a linear polarizer (polarization 'linear'), stored normalised;
+   * after changing the returned vector in place, normalise it. */
   get polarizerDirection() { return this.birefUniforms.biref_polarizer_dir.value; }
-  set polarizerDirection(v) { this.birefUniforms.biref_polarizer_dir.value.copy(v); }
+  set polarizerDirection(v) { this.birefUniforms.biref_polarizer_dir.value.copy(unit('polarizerDirection', v)); }
 
   /** Analyzer between the slab and the camera: 'none', 's', 'p' (relative to the ray's plane
    * of incidence) or 'linear' (world-fixed, along analyzerDirection). */
   get analyzer() { return keyOf(ANALYZERS, this.birefUniforms.biref_light.value.z); }
   set analyzer(v) { this.birefUniforms.biref_light.value.z = lookUp('analyzer', ANALYZERS, v); }
 
-  /** World-space direction of a linear analyzer (analyzer 'linear'). */
+  /** World-space direction of a linear analyzer (analyzer 'linear'), stored normalised. */
   get analyzerDirection() { return this.birefUniforms.biref_analyzer_dir.value; }
-  set analyzerDirection(v) { this.birefUniforms.biref_analyzer_dir.value.copy(v); }
+  set analyzerDirection(v) { this.birefUniforms.biref_analyzer_dir.value.copy(unit('analyzerDirection', v)); }
+
+  // Material.setValues would copy vectors past the setters: the material's own keys go through them.
+  setValues(values) {
+    if (values === undefined) return;
+    const rest = {};
+    for (const [k, v] of Object.entries(values)) {
+      if (OWN_KEYS.includes(k)) this[k] = v;
+      else rest[k] = v;
+    }
+    super.setValues(rest);
+  }
 
   onBeforeCompile(shader) {
     Object.assign(shader.uniforms, this.birefUniforms);
@@ -250,12 +264,17 @@ export class BirefringentMaterial extends MeshPhysicalMaterial {
   copy(source) {
     super.copy(source);
     if (source.isBirefringentMaterial) {
-      for (const k of ['ordinaryIOR', 'extraordinaryIOR', 'surroundingIOR', 'slabThickness', 'slabThicknessMap',
-        'opticAxis', 'opticAxisMap', 'opticAxisSpace', 'polarization', 'polarizationS', 'polarizerDirection', 'analyzer',
-        'analyzerDirection']) this[k] = source[k];
+      for (const k of OWN_KEYS) this[k] = source[k];
     }
     return this;
   }
+}
+
+// A finite, non-zero direction, normalised (a copy: the caller's vector is left as it is).
+function unit(name, v) {
+  const l = v && v.isVector3 ? v.length() : NaN;
+  if (!(Number.isFinite(l) && l > 0)) throw new RangeError(`${name}: not a finite non-zero Vector3`);
+  return v.clone().divideScalar(l);
 }
 
 function checkIndex(name, v) {

@@ -1,6 +1,6 @@
-/* Tiny 3-vector helpers for the renderer (inline: they sit in the per-pixel loop). */
-#ifndef BIREF_RENDER_VEC3_H
-#define BIREF_RENDER_VEC3_H
+/* Tiny 3-vector helpers for the shader and the renderer (inline: they sit in the per-pixel loop). */
+#ifndef BIREF_SHADING_VEC3_H
+#define BIREF_SHADING_VEC3_H
 
 #include <math.h>
 

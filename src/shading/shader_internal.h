@@ -1,0 +1,49 @@
+/* The shader's inside (shading.h): what biref's renderer, the photoelastic pictures and the
+ * public shading entry points share. The shader holds the integrator and the one light; world-fixed
+ * polarizers are resolved here, per hit, and nowhere else. */
+#ifndef BIREF_SHADER_INTERNAL_H
+#define BIREF_SHADER_INTERNAL_H
+
+#include <math.h>
+
+#include "biref/shading.h"
+#include "spectral/integrator_internal.h"
+#include "spectral/phase_prefilter.h"
+
+/* biref_slab_prepare needs theta < pi/2; a ray grazing a slab is clamped just below. */
+#define BIREF_SHADING_THETA_MAX (0.5 * M_PI - 1e-7)
+
+struct biref_shader {
+    const biref_spectral *sp;
+    biref_integrator *it;
+    biref_light light;
+    int world_fixed;    /* the light has a world-fixed polarizer or analyzer */
+    double passthrough; /* not world-fixed: what the light passes with no slab, the same for every ray */
+};
+
+/* The paper's frames of the unit view ray dir at a hit on a slab with unit normal, unit tangent
+ * and unit world optic axis; base gives the slab's constants (its axis is replaced). */
+void biref_shading_frames(const double normal[3], const double tangent[3], const double axis_world[3],
+                          const biref_slab *base, const double dir[3], biref_hit_frames *f);
+
+/* A hit's transmission and reflection factors from its frames, the phase integrals averaged over
+ * the footprint fpT (in the transmission frame; NULL: point look-ups). The slab's constants must
+ * have passed biref_slab_check. Outputs undefined unless BIREF_OK. */
+biref_status biref_shader_eval(const biref_shader *sh, const biref_hit_frames *f, const biref_opl_footprint *fpT,
+                               double T[3], double R[3]);
+
+/* Hits in the packet kernel's form (integrator_internal.h): T, R of the hits whose scalar[k] is 0;
+ * scalar[k] = 1 for the hits to evaluate with biref_shader_eval (every hit under a world-fixed
+ * light). */
+void biref_shader_packet(const biref_shader *sh, const biref_packet_hit *hits, const biref_opl_footprint *fp,
+                         size_t n, double (*T)[3], double (*R)[3], unsigned char *scalar);
+
+/* The factor of light that reaches the viewer along k without a slab, in the basis whose s is
+ * perpendicular to k and the normal (the tangent when k is along the normal). */
+double biref_shader_background(const biref_shader *sh, const double k[3], const double normal[3],
+                               const double tangent[3]);
+
+/* A hit whose evaluation failed: the slab shown as a perfect mirror seen through the analyzer. */
+void biref_shader_failed_hit(const biref_shader *sh, const biref_hit_frames *f, double T[3], double R[3]);
+
+#endif

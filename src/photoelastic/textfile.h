@@ -1,16 +1,15 @@
-/* Whole-file reading and the line/field/number scanning shared by the photoelastic input parsers
- * (node tables, boundaries, CalculiX result files). */
+/* Whole-file reading for the photoelastic input parsers (the library's reader, io/textfile.h), and the
+ * line/field/number scanning they share (text_scan.c: node tables, boundaries, CalculiX results). */
 #ifndef BIREF_PHOTOELASTIC_TEXTFILE_H
 #define BIREF_PHOTOELASTIC_TEXTFILE_H
 
-#include <stddef.h>
+#include "io/textfile.h"
 
-#include "biref/common.h"
-
-/* Reads path into a malloc'ed buffer (*len bytes, NUL-terminated). At most max_bytes.
- * BIREF_ERR_IO / BIREF_ERR_NOMEM with "cannot read: reason" in msg. */
-biref_status biref_pe_read_text(const char *path, size_t max_bytes, char **text, size_t *len, char *msg,
-                                size_t msg_len);
+static inline biref_status biref_pe_read_text(const char *path, size_t max_bytes, char **text, size_t *len,
+                                              char *msg, size_t msg_len)
+{
+    return biref_read_text(path, max_bytes, text, len, msg, msg_len);
+}
 
 /* Lines of a text buffer, numbered from 1. */
 typedef struct {

@@ -16,6 +16,9 @@ cmd=()
 while IFS= read -r line; do
   case $line in
   "### biref "*) read -r -a cmd <<<"${line#\#\#\# biref }"; continue ;;
+  *) [[ " ${cmd[*]} " == *" --tfp "* ]] && continue ;; # a mode with its own parser (not walked yet)
+esac
+case $line in
   "| \`-h, --help\`"*) continue ;;
   "| \`-"*) ;;
   *) continue ;;

@@ -82,7 +82,9 @@ int biref_render_shade_pixel(const biref_renderer *r, const double dir[3], const
     double tT[3], tR[3];
     biref_opl_footprint fp;
     if (r->prefilter && dx && dy) biref_render_footprint(r, hit, dir, dx, dy, &fp);
-    if (biref_shader_eval(r->shader, &fr, r->prefilter && dx && dy ? &fp : NULL, tT, tR) != BIREF_OK) {
+    const biref_status s = hit->material ? biref_shader_eval_material(r->shader, hit->material, &fr, tT, tR)
+                                         : biref_shader_eval(r->shader, &fr, r->prefilter && dx && dy ? &fp : NULL, tT, tR);
+    if (s != BIREF_OK) {
         *fallback = 1;
         biref_shader_failed_hit(r->shader, &fr, tT, tR);
     }

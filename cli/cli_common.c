@@ -152,3 +152,19 @@ void cli_getopt_error(const char *cmd, int code, char *const argv[])
     else
         cli_error(cmd, "unknown option '%s' (see biref %s --help)", opt, cmd);
 }
+
+void cli_print_jones_table(const char *title, const biref_jones *J, double P[2][2])
+{
+    static const char *const sp[2] = {"s", "p"};
+    printf("%s   (rows: input, columns: output)\n", title);
+    printf("  %-3s %-28s %-28s\n", "", "s", "p");
+    for (int i = 0; i < 2; i++) {
+        printf("  %-3s", sp[i]);
+        for (int j = 0; j < 2; j++) {
+            char cell[64];
+            snprintf(cell, sizeof cell, "%.6f (%+.4f%+.4fi)", P[i][j], creal(J->m[i][j]), cimag(J->m[i][j]));
+            printf(" %-28s", cell);
+        }
+        printf("\n");
+    }
+}

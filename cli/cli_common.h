@@ -22,6 +22,9 @@ int cli_parse_int(const char *cmd, const char *opt, const char *text, long lo, l
 /* Parses n comma-separated finite numbers ("a,b,c"). */
 int cli_parse_list(const char *cmd, const char *opt, const char *text, double *out, int n);
 
+/* A Jones matrix and its power fractions as a table on stdout (rows: input s/p, columns: output). */
+void cli_print_jones_table(const char *title, const biref_jones *J, double P[2][2]);
+
 /* Options shared by every command that describes one slab at one angle. The indices are either
  * constants (--eta-o, --eta-e: material NULL after cli_slab_opts_finish) or a dispersive material
  * (--material, --dispersion-csv, or a Sellmeier/Cauchy formula per index; cli_dispersion.h). */

@@ -19,6 +19,7 @@
 #include "de_scale.h"
 #include "fig_aliasing.h"
 #include "fig_common.h"
+#include "fig_stacks.h"
 #include "fig_plot.h"
 #include "outfile.h"
 
@@ -342,6 +343,10 @@ const cli_command_spec CLI_FIGURE = {
     "           to alias against a 32x32 super-sampled reference, with dE00 maps and costs\n"
     "  dispersion  five crystal plates over 0-70 deg, exact, with the indices fixed at 550 nm\n"
     "           and with n(lambda): colours side by side, dE00 between them (docs/MATERIALS.md)\n"
+    "  filters  transmission spectra of a Lyot and a folded Solc filter (stacks/ under --scenes)\n"
+    "  tape-art cellophane patches between crossed polarizers: a stained-glass picture\n"
+    "  stress-thickness  a disk whose stress varies through its thickness, dark-field\n"
+    "           polariscope: uniform, parabolic profile, principal directions turning\n"
     "  all      everything above\n\n"
     "Options:\n",
     OPTS,
@@ -365,24 +370,29 @@ int cmd_figure(int argc, char **argv)
     const char *scenes = a.scenes;
     const int first_arg = p.first_arg;
     if (first_arg >= argc)
-        return cli_error(FIG_CMD, "missing figure name (fig5, fig6c, fig7, fig9, table1, aliasing, dispersion or all)"),
+        return cli_error(FIG_CMD, "missing figure name (fig5, fig6c, fig7, fig9, table1, aliasing, dispersion, filters, "
+                                  "tape-art, stress-thickness or all)"),
                CLI_EXIT_USAGE;
     if (first_arg + 1 < argc) return cli_error(FIG_CMD, "unexpected argument '%s'", argv[first_arg + 1]), CLI_EXIT_USAGE;
     const char *name = argv[first_arg];
     char default_scenes[4096];
     if (!scenes) scenes = cli_data_path("examples", default_scenes, sizeof default_scenes);
-    static const char *const NAMES[] = {"fig5", "fig6c", "fig7", "fig9", "table1", "aliasing", "dispersion"};
-    enum { NFIG = 7 };
+    static const char *const NAMES[] = {"fig5",       "fig6c",   "fig7",     "fig9",
+                                        "table1",     "aliasing", "dispersion", "filters",
+                                        "tape-art",   "stress-thickness"};
+    enum { NFIG = 10 };
     int sel[NFIG] = {0}, any = 0;
     for (int i = 0; i < NFIG; i++) any |= sel[i] = !strcmp(name, NAMES[i]) || !strcmp(name, "all");
     if (!any)
         return cli_error(FIG_CMD,
-                         "unknown figure '%s' (expected fig5, fig6c, fig7, fig9, table1, aliasing, dispersion or all)",
+                         "unknown figure '%s' (expected fig5, fig6c, fig7, fig9, table1, aliasing, dispersion, "
+                         "filters, tape-art, stress-thickness or all)",
                          name),
                CLI_EXIT_USAGE;
     if (!c.dir) return cli_error(FIG_CMD, "missing -o DIR"), CLI_EXIT_USAGE;
     /* Everything the figures read is checked before the first one is computed. */
     if ((sel[3] || sel[4]) && check_scenes(scenes, sel[3], sel[4])) return CLI_EXIT_USAGE;
+    if (sel[7] && fig_filters_check(scenes)) return CLI_EXIT_USAGE;
     if (prepare_dir(c.dir)) return CLI_EXIT_FAIL;
     if (c.threads > 0) omp_set_num_threads(c.threads);
 
@@ -405,7 +415,10 @@ int cmd_figure(int argc, char **argv)
         case 3: rc = fig9(&c, scenes); break;
         case 4: rc = table1(&c, scenes); break;
         case 5: rc = fig_aliasing(c.sp, c.dir, scenes, c.quick, c.threads); break;
-        default: rc = fig_dispersion(&c); break;
+        case 6: rc = fig_dispersion(&c); break;
+        case 7: rc = fig_filters(&c, scenes); break;
+        case 8: rc = fig_tape_art(&c); break;
+        default: rc = fig_stress_thickness(&c); break;
         }
         if (rc == CLI_EXIT_OK) fprintf(stderr, "biref figure: %s done in %.1f s\n", NAMES[i], biref_wall_seconds() - t0);
     }

@@ -79,21 +79,6 @@ static cJSON *modes_json(const biref_slab_state *st)
     return m;
 }
 
-static void print_table(const char *title, const biref_jones *J, double P[2][2])
-{
-    printf("%s   (rows: input, columns: output)\n", title);
-    printf("  %-3s %-28s %-28s\n", "", "s", "p");
-    for (int i = 0; i < 2; i++) {
-        printf("  %-3s", SP[i]);
-        for (int j = 0; j < 2; j++) {
-            char cell[64];
-            snprintf(cell, sizeof cell, "%.6f (%+.4f%+.4fi)", P[i][j], creal(J->m[i][j]), cimag(J->m[i][j]));
-            printf(" %-28s", cell);
-        }
-        printf("\n");
-    }
-}
-
 static int run(const slab_args *a);
 
 int cmd_slab(int argc, char **argv)
@@ -182,8 +167,8 @@ static int run(const slab_args *a)
     printf("theta %.4g deg, lambda %.6g nm, method %s, K %.6f, K_max o %.6f e %.6f%s\n\n", so.theta_deg, lambda,
            tmm ? "tmm" : "closed-form", st.K, st.modes.K_max_o, st.modes.K_max_e,
            st.total_reflection ? "  (total reflection inside)" : "");
-    print_table("Transmission: power fraction (Jones amplitude)", &T, PT);
-    print_table("Reflection:   power fraction (Jones amplitude)", &R, PR);
+    cli_print_jones_table("Transmission: power fraction (Jones amplitude)", &T, PT);
+    cli_print_jones_table("Reflection:   power fraction (Jones amplitude)", &R, PR);
     printf("\nEnergy check T+R: s %.12f, p %.12f\n", PT[0][0] + PT[0][1] + PR[0][0] + PR[0][1],
            PT[1][0] + PT[1][1] + PR[1][0] + PR[1][1]);
     printf("\nNormal modes (q in units of k0):\n");

@@ -12,6 +12,7 @@
 #include "cli_polarizer.h"
 #include "commands.h"
 #include "json_out.h"
+#include "spectrum_stack.h"
 
 static const char *const CMD = "spectrum";
 static const char *const SP[2] = {"s", "p"};
@@ -69,6 +70,7 @@ typedef struct {
     double stokes[4];
     double complex P_an[2][2];
     char pol_text[64], an_text[64];
+    const char *stack_file; /* --stack: a stack file instead of the slab options */
 } spectrum_args;
 
 /* What is printed. */
@@ -158,6 +160,9 @@ static const cli_opt OPTS[] = {
     CLI_CUSTOM("stokes", "S0,S1,S2,S3", OPT_STOKES, "any (partially) polarised input in the s/p basis"),
     CLI_CUSTOM("analyzer", "A", OPT_ANALYZER,
                "none (default), s, p, linear:DEG or circular:+1|-1"),
+    CLI_STRING("stack", 0, "FILE", F(stack_file),
+               "a stack of layers (docs/STACKS.md) instead of the slab options:\n"
+               "methods expansion (default), numeric, ground-truth"),
     CLI_FLAG("json", 0, F(json), "machine-readable output"),
     {.name = "samples", .kind = CLI_OPT_INT, .value = "N", .offset = F(samples), .lo = 1, .hi = MAX_SAMPLES,
      .old_of = "spectral-samples"},
@@ -204,7 +209,35 @@ static int check_args(spectrum_args *a)
         a->P_an[0][0] = a->light.mask[0];
         a->P_an[1][1] = a->light.mask[1];
     }
+    if (a->stack_file) {
+        char msg[200];
+        if (biref_theta_check(a->so.theta_deg * M_PI / 180.0, msg, sizeof msg) != BIREF_OK)
+            return cli_error(CMD, "--theta-deg: %s", msg), -1;
+        return 0;
+    }
     return cli_slab_opts_finish(CMD, &a->so);
+}
+
+/* --stack replaces the slab options, and its default method is the expansion (the paper's
+ * analytic method is for one slab). Returns 0 or -1 (one error line printed). */
+static int check_stack_args(spectrum_args *a, const cli_parsed *p)
+{
+    static const char *const slab_opts[] = {"eta-o",        "eta-e",        "axis",       "thickness-um",
+                                            "thickness-mm", "thickness-nm", "eta-i",      "material",
+                                            "sellmeier-o",  "sellmeier-e",  "cauchy-o",   "cauchy-e",
+                                            "dispersion-csv"};
+    for (size_t k = 0; k < sizeof slab_opts / sizeof *slab_opts; k++)
+        if (cli_opts_given(&CLI_SPECTRUM, p, slab_opts[k]))
+            return cli_error(CMD, "--%s: not valid with --stack (the stack file gives the layers and eta_i)",
+                             slab_opts[k]),
+                   -1;
+    if (!cli_opts_given(&CLI_SPECTRUM, p, "method")) a->method = BIREF_METHOD_EXPANSION;
+    if (a->method == BIREF_METHOD_ANALYTIC)
+        return cli_error(CMD, "--method analytic: not valid with --stack (the paper's eq. 26 is for one slab; use "
+                              "expansion, numeric or ground-truth)"),
+               -1;
+    if (a->have_order) return cli_error(CMD, "--order: not valid with --stack (the stack's expansion takes --tolerance)"), -1;
+    return 0;
 }
 
 /* Returns 0 to go on, 1 after --help, -1 on bad usage (one error line printed). */
@@ -221,6 +254,7 @@ static int parse(int argc, char **argv, spectrum_args *a)
     int r = cli_opts_parse(&CLI_SPECTRUM, a, argc, argv, &p);
     if (r) return r;
     if (p.n_args) return cli_error(CMD, "unexpected argument '%s'", argv[p.first_arg]), -1;
+    if (a->stack_file && check_stack_args(a, &p)) return -1;
     return check_args(a);
 }
 
@@ -432,11 +466,32 @@ static int print_text(const spectrum_args *a, const spectrum_result *res)
     return CLI_EXIT_OK;
 }
 
+/* --stack: the stack's colours under the same light (cli/spectrum_stack.c). */
+static int run_stack(const spectrum_args *a)
+{
+    spectrum_stack_args sa;
+    memset(&sa, 0, sizeof sa);
+    sa.file = a->stack_file;
+    sa.theta_deg = a->so.theta_deg;
+    sa.cfg = a->cfg;
+    biref_stack_spectrum_opts_default(&sa.opts);
+    sa.opts.method = a->method;
+    if (a->samples) sa.opts.samples = (int)a->samples;
+    if (a->have_tol) sa.opts.tolerance = a->eopts.tolerance;
+    make_light(a, &sa.light);
+    memcpy(sa.stokes, a->stokes, sizeof sa.stokes);
+    char polbuf[48];
+    names(a, polbuf, &sa.pol_name, &sa.an_name);
+    sa.json = a->json;
+    return spectrum_stack_run(&sa);
+}
+
 int cmd_spectrum(int argc, char **argv)
 {
     spectrum_args a;
     const int p = parse(argc, argv, &a);
     if (p) return p > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
+    if (a.stack_file) return run_stack(&a);
     spectrum_result res;
     int rc = compute(&a, &res);
     if (rc == CLI_EXIT_OK) rc = a.json ? print_json(&a, &res) : print_text(&a, &res);

@@ -6,6 +6,7 @@
 #include "cli_opts.h"
 
 int cmd_slab(int argc, char **argv);
+int cmd_stack(int argc, char **argv);
 int cmd_spectrum(int argc, char **argv);
 int cmd_accuracy(int argc, char **argv);
 int cmd_render(int argc, char **argv);
@@ -16,7 +17,7 @@ int cmd_photoelastic(int argc, char **argv);
 int cmd_gl_data(int argc, char **argv);
 int cmd_material(int argc, char **argv);
 
-extern const cli_command_spec CLI_SLAB, CLI_SPECTRUM, CLI_ACCURACY, CLI_RENDER, CLI_DIFF, CLI_BENCH, CLI_FIGURE,
-    CLI_PHOTOELASTIC, CLI_PHOTOELASTIC_DEMODULATE, CLI_GL_DATA, CLI_MATERIAL;
+extern const cli_command_spec CLI_SLAB, CLI_STACK, CLI_SPECTRUM, CLI_ACCURACY, CLI_RENDER, CLI_DIFF, CLI_BENCH,
+    CLI_FIGURE, CLI_PHOTOELASTIC, CLI_PHOTOELASTIC_DEMODULATE, CLI_GL_DATA, CLI_MATERIAL;
 
 #endif

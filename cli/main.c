@@ -12,6 +12,7 @@ static const struct {
     const cli_command_spec *spec;
 } commands[] = {
     {"slab", cmd_slab, "Jones matrices and power fractions of one slab at one wavelength", &CLI_SLAB},
+    {"stack", cmd_stack, "Jones matrices and power fractions of a stack of layers at one wavelength", &CLI_STACK},
     {"material", cmd_material, "dispersive materials: the named list, indices and group indices at a wavelength",
      &CLI_MATERIAL},
     {"spectrum", cmd_spectrum, "colour (band integrals) of one slab: analytic, numeric or ground truth", &CLI_SPECTRUM},

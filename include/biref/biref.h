@@ -18,6 +18,7 @@
 #include "biref/color.h"
 #include "biref/polarization.h"
 #include "biref/spectral.h"
+#include "biref/stack.h"
 #include "biref/integrator.h"
 #include "biref/render.h"
 #include "biref/photoelastic.h"

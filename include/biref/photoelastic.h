@@ -22,6 +22,7 @@
 #include "biref/common.h"
 #include "biref/integrator.h"
 #include "biref/spectral.h"
+#include "biref/stack.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -80,6 +81,17 @@ BIREF_API biref_slab biref_pe_slab_at(const biref_pe_material *m, double thickne
  * optical element as biref_pe_slab_at (up to a common index shift). */
 BIREF_API biref_slab biref_pe_slab_best(const biref_pe_material *m, double thickness_m, double eta_i,
                                         const biref_pe_principal *p);
+
+/* ------------------------------------------------------------------------ */
+/* Stress through the thickness (stack.h)                                    */
+/* ------------------------------------------------------------------------ */
+
+/* A plate of thickness h whose plane stress varies through its thickness: n_layers equal layers
+ * (1 .. BIREF_STACK_MAX_LAYERS), layer k (from the face the light enters) under stress[k], each the
+ * slab of biref_pe_slab_at, as a stack (docs/STACKS.md §3). With fixed principal directions the
+ * retardations add (integrated photoelasticity); rotating directions change the picture. */
+BIREF_API biref_status biref_pe_stack(const biref_pe_material *m, double thickness_m, double eta_i, int n_layers,
+                                      const biref_pe_stress *stress, biref_stack *out, char *msg, size_t msg_len);
 
 /* ------------------------------------------------------------------------ */
 /* Stress fields (closed forms)                                              */

@@ -17,8 +17,8 @@ import numpy as _np
 
 from ._native import ffi as _ffi, lib as _lib, library_path
 
-__all__ = ["slab", "spectrum", "material", "materials", "render", "photoelastic", "BirefError", "library_path",
-           "__version__"]
+__all__ = ["slab", "stack", "stack_spectrum", "spectrum", "material", "materials", "render", "photoelastic", "BirefError",
+           "library_path", "__version__"]
 __version__ = "0.1.0"
 
 _SP = ("s", "p")
@@ -293,6 +293,83 @@ def _slab_one(sl, theta_deg, lambda_nm, method, band=None):
 
 
 # --------------------------------------------------------------------------------------------
+# Stacks of layers
+# --------------------------------------------------------------------------------------------
+
+def _load_stack(stack):
+    """A checked biref_stack from a stack file's path or a dict in the file's form."""
+    st = _ffi.new("biref_stack *")
+    if isinstance(stack, dict):
+        text = _json.dumps(stack).encode()
+        _call("stack", _lib.biref_stack_parse, text, len(text), st)
+    elif isinstance(stack, (str, bytes, _os.PathLike)):
+        _call(_os.fsdecode(stack), _lib.biref_stack_load, _os.fsencode(stack), st)
+    else:
+        raise TypeError("stack: expected a stack file's path or a dict {'eta_i': ..., 'layers': [...]}")
+    return st
+
+
+def _stack_layers(st):
+    out = []
+    for i in range(st.n_layers):
+        l = st.layers[i]
+        d = {"eta": l.eta_o} if l.isotropic else {"eta_o": l.eta_o, "eta_e": l.eta_e, "axis": list(l.axis)}
+        d["thickness_nm"] = l.thickness_nm
+        out.append(d)
+    return out
+
+
+def stack(stack, theta_deg=0.0, lambda_nm=550.0, method="exact"):
+    """Transmission and reflection of a plane wave by a stack of layers: the fields of
+    ``biref stack FILE --json``. stack: a stack file's path, or a dict in the file's form
+    ({"eta_i": 1.0, "layers": [{"eta_o": ..., "eta_e": ..., "azimuth_deg": ..., "thickness_um": ...}]},
+    docs/STACKS.md). lambda_nm may be a numpy array: the leaves of T, R and energy are then arrays
+    of its shape and jones_T/jones_R complex arrays. method: "exact" or "tmm" (4x4 product).
+    """
+    if method not in ("exact", "tmm"):
+        raise ValueError(f"method: expected exact or tmm, got {method!r}")
+    sk = _load_stack(stack)
+    theta = _theta_rad(theta_deg)
+    lam = _np.asarray(lambda_nm, dtype=float)
+    if not _np.all(lam > 0):
+        raise ValueError("lambda_nm: must be positive")
+    st = _ffi.new("biref_stack_state *")
+    _check(_lib.biref_stack_prepare(sk, theta, st), "stack")
+    T = _ffi.new("biref_jones *")
+    R = _ffi.new("biref_jones *")
+    JT = _np.empty(lam.shape + (2, 2), dtype=complex)
+    JR = _np.empty_like(JT)
+    for idx in _np.ndindex(lam.shape):
+        if method == "tmm":
+            _check(_lib.biref_stack_jones_tmm(sk, theta, float(lam[idx]), T, R), "tmm")
+        else:
+            _lib.biref_stack_jones_at(st, float(lam[idx]), T, R)
+        JT[idx] = [[T.m[i][o] for o in range(2)] for i in range(2)]
+        JR[idx] = [[R.m[i][o] for o in range(2)] for i in range(2)]
+    if not (_np.all(_np.isfinite(JT)) and _np.all(_np.isfinite(JR))):
+        raise BirefError("numerical failure (non-finite result)")
+    PT, PR = _np.abs(JT) ** 2, _np.abs(JR) ** 2
+    scalar = lam.ndim == 0
+    if scalar:
+        jones = lambda J: _sp_matrix([[[J[i, o].real, J[i, o].imag] for o in range(2)] for i in range(2)])  # noqa: E731
+        power = lambda P: _sp_matrix(P.tolist())  # noqa: E731
+    else:
+        jones = power = lambda M: _sp_matrix(_np.moveaxis(M, (-2, -1), (0, 1)))  # noqa: E731
+    return {
+        "method": method,
+        "input": {"eta_i": sk.eta_i, "theta_deg": float(theta_deg), "lambda_nm": float(lam) if scalar else lam,
+                  "layers": _stack_layers(sk)},
+        "T": power(PT),
+        "R": power(PR),
+        "jones_T": jones(JT),
+        "jones_R": jones(JR),
+        "energy": {_SP[i]: PT[..., i, :].sum(-1) + PR[..., i, :].sum(-1) for i in range(2)},
+        "K": st.K,
+        "total_reflection": {"any": bool(st.evanescent), "layers": st.evanescent},
+    }
+
+
+# --------------------------------------------------------------------------------------------
 # Spectra
 # --------------------------------------------------------------------------------------------
 
@@ -553,6 +630,64 @@ def spectrum(eta_o=None, eta_e=None, axis=None, thickness_mm=None, thickness_um=
         # The pair order the adaptive (or fixed) expansion used for the mixed colours.
         result["expansion_order"] = {"T": leaf(orders[..., 0]), "R": leaf(orders[..., 1])}
     return result
+
+
+def stack_spectrum(stack, theta_deg=0.0, method="expansion", samples=None, tolerance=None,
+                   polarization="unpolarized", polarizer=None, stokes=None, analyzer="none"):
+    """Colours of a stack of layers: the fields of ``biref spectrum --stack FILE --json``. stack: a
+    stack file's path or a dict in the file's form; method: expansion (default; falls back to
+    adaptive numeric integration, reported under "expansion"), numeric or ground-truth. The light
+    options are those of ``spectrum``.
+    """
+    sk = _load_stack(stack)
+    theta = _theta_rad(theta_deg)
+    m = _method(method)
+    opts = _ffi.new("biref_stack_spectrum_opts *")
+    _lib.biref_stack_spectrum_opts_default(opts)
+    opts.method = m
+    if samples is not None:
+        if m != _lib.BIREF_METHOD_NUMERIC:
+            raise ValueError("samples: only valid with method numeric")
+        opts.samples = int(samples)
+    if tolerance is not None:
+        if m != _lib.BIREF_METHOD_EXPANSION:
+            raise ValueError("tolerance: only valid with method expansion")
+        opts.tolerance = float(tolerance)
+    w_in, mask, S, P, pol_name, an_name = _light(polarization, polarizer, stokes, analyzer)
+    light = _ffi.new("biref_light *")
+    if S is None and P is None:
+        _check(_lib.biref_light_sp(w_in, mask, light), "light")
+    else:
+        _check(_lib.biref_light_stokes(S if S is not None else [1.0, w_in[0] - w_in[1], 0.0, 0.0], light),
+               "stokes: not a physical Stokes vector")
+        if P is None:
+            P = _ffi.new("biref_complex[2][2]")
+            P[0][0], P[1][1] = mask
+        _lib.biref_light_set_analyzer(light, P)
+    st = _ffi.new("biref_stack_state *")
+    _check(_lib.biref_stack_prepare(sk, theta, st), "stack")
+    spp = _ffi.new("biref_spectral **")
+    _call("spectral context", _lib.biref_spectral_create, _ffi.NULL, spp)
+    sp = _ffi.gc(spp[0], _lib.biref_spectral_destroy)
+    spec = _ffi.new("biref_spectrum *")
+    mt, mr = _ffi.new("double[3]"), _ffi.new("double[3]")
+    info = _ffi.new("biref_stack_spectrum_info *")
+    _call("stack spectrum", _lib.biref_stack_spectrum, sp, st, opts, light, spec, mt, mr, info)
+    pairs = lambda X: {_SP[i]: {_SP[o]: list(X[i][o]) for o in range(2)} for i in range(2)}  # noqa: E731
+    out = {
+        "method": _ffi.string(_lib.biref_method_name(m)).decode(),
+        "samples": info.samples or None,
+        "input": {"eta_i": sk.eta_i, "theta_deg": float(theta_deg), "layers": _stack_layers(sk)},
+        "total_reflection": bool(st.evanescent),
+        "T": pairs(spec.T),
+        "R": pairs(spec.R),
+        "mixed": {"polarization": pol_name, "analyzer": an_name, "T_xyz": list(mt), "R_xyz": list(mr)},
+    }
+    if m == _lib.BIREF_METHOD_EXPANSION:
+        out["expansion"] = {"fallback": bool(info.fallback), "reason": _ffi.string(info.reason).decode(),
+                            "bound": info.bound if _math.isfinite(info.bound) else None, "legs": info.legs,
+                            "groups": {"T": info.groups[0], "R": info.groups[1]}}
+    return out
 
 
 # --------------------------------------------------------------------------------------------

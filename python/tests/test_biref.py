@@ -61,6 +61,47 @@ def test_slab_total_reflection_matches_cli():
     assert_same(biref.slab(**kw), ref, 1e-13)
 
 
+@needs_cli
+def test_stack_matches_cli():
+    path = os.path.join(ROOT, "examples", "stacks", "solc_folded.json")
+    ref = cli_json("stack", path, "--theta-deg", "20", "--lambda-nm", "520")
+    got = biref.stack(path, theta_deg=20, lambda_nm=520)
+    for key in ("T", "R", "jones_T", "jones_R", "energy", "K", "total_reflection"):
+        assert_same(got[key], ref[key], 1e-13)
+
+
+def test_stack_of_one_layer_is_the_slab_and_arrays_broadcast():
+    lam = np.linspace(400, 700, 5)
+    one = {"eta_i": 1.0, "layers": [{"eta_o": 1.775, "eta_e": 1.231, "axis": [0.084, 0.979, -0.187],
+                                     "thickness_um": 12}]}
+    v = biref.stack(one, theta_deg=30, lambda_nm=lam)
+    s = biref.slab(**SLAB, thickness_um=12, theta_deg=30, lambda_nm=lam)
+    for d in ("T", "R"):
+        for a in "sp":
+            for b in "sp":
+                np.testing.assert_allclose(v[d][a][b], s[d][a][b], atol=1e-12)
+    np.testing.assert_allclose(v["energy"]["p"], 1.0, atol=1e-12)
+    t = biref.stack(one, theta_deg=30, lambda_nm=lam, method="tmm")
+    np.testing.assert_allclose(t["T"]["s"]["p"], v["T"]["s"]["p"], atol=1e-9)
+    with pytest.raises(ValueError, match="layers\\[0\\].thickness_um: missing"):
+        biref.stack({"layers": [{"eta": 1.5}]})
+    with pytest.raises(ValueError, match="method"):
+        biref.stack(one, method="magic")
+
+
+@needs_cli
+def test_stack_spectrum_matches_cli():
+    path = os.path.join(ROOT, "examples", "stacks", "film_on_glass.json")
+    ref = cli_json("spectrum", "--stack", path, "--theta-deg", "30", "--polarization", "s", "--analyzer", "p")
+    got = biref.stack_spectrum(path, theta_deg=30, polarization="s", analyzer="p")
+    for key in ("T", "R"):
+        assert_same(got[key], ref[key], 1e-12)
+    np.testing.assert_allclose(got["mixed"]["T_xyz"], ref["mixed"]["T_xyz"], atol=1e-12)
+    assert got["expansion"]["groups"] == ref["expansion"]["groups"]
+    with pytest.raises(ValueError, match="no analytic method"):
+        biref.stack_spectrum(path, method="analytic")
+
+
 def test_slab_vectorised_equals_scalar_and_conserves_energy():
     theta = np.array([0.0, 20.0, 45.0, 70.0])
     lam = np.linspace(400, 700, 7)[:, None]

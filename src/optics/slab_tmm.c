@@ -78,10 +78,12 @@
 #include <complex.h>
 #include <math.h>
 #include <stddef.h>
+#include <string.h>
 
 #include <lapacke.h>
 
 #include "biref/optics.h"
+#include "biref/stack.h"
 
 enum { TMM_N = 4, TMM_LWORK = 256 };
 
@@ -144,25 +146,20 @@ static void tmm_berreman(const double e[3][3], double K, double complex D[TMM_N 
         for (int c = 0; c < TMM_N; c++) D[r + TMM_N * c] = R[r][c];
 }
 
-biref_status biref_slab_jones_tmm(const biref_slab *slab, double theta_rad, double lambda_nm, biref_jones *T,
-                                  biref_jones *R)
+/* Dielectric tensor eps = eps_o I + (eps_e - eps_o) A A^T of a medium with unit axis a. */
+static void tmm_tensor(double eta_o, double eta_e, const double a[3], double e[3][3])
 {
-    double a[3];
-    biref_status st = tmm_check(slab, theta_rad, lambda_nm, a);
-    if (st != BIREF_OK) return st;
-
-    const double n = slab->eta_i;
-    const double sn = sin(theta_rad), cs = cos(theta_rad);
-    const double K = n * sn;
-    const double k0d = tmm_two_pi / lambda_nm * slab->thickness_nm;
-
-    /* Dielectric tensor of the slab. */
-    const double eo = slab->eta_o * slab->eta_o;
-    const double de = slab->eta_e * slab->eta_e - eo;
-    double e[3][3];
+    const double eo = eta_o * eta_o, de = eta_e * eta_e - eo;
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) e[i][j] = (i == j ? eo : 0.0) + de * a[i] * a[j];
+}
 
+/* B <- M B for the two columns of B (tangential vectors psi at the layer's bottom face, giving
+ * them at its top face), M = V diag(exp(i k0 d w)) V^-1 of one homogeneous layer. *growth
+ * accumulates k0 d max|Im w| over the layers crossed (the evanescent amplification). */
+static biref_status tmm_layer_apply(const double e[3][3], double K, double k0d, double *growth,
+                                    double complex B[TMM_N * 2])
+{
     /* Eigen-decomposition Delta V = V diag(w). */
     double complex D[TMM_N * TMM_N], w[TMM_N], V[TMM_N * TMM_N], vl_dummy[1], work[TMM_LWORK];
     double rwork[2 * TMM_N];
@@ -177,7 +174,8 @@ biref_status biref_slab_jones_tmm(const biref_slab *slab, double theta_rad, doub
         if (fabs(cimag(w[j])) > max_im) max_im = fabs(cimag(w[j]));
         if (cabs(w[j]) > max_abs) max_abs = cabs(w[j]);
     }
-    if (k0d * max_im > log(TMM_MAX_GROWTH) || k0d * max_abs > TMM_MAX_PHASE) return BIREF_ERR_ILLCOND;
+    *growth += k0d * max_im;
+    if (*growth > log(TMM_MAX_GROWTH) || k0d * max_abs > TMM_MAX_PHASE) return BIREF_ERR_ILLCOND;
 
     /* LU of V, and its conditioning (Jordan block near a critical angle). */
     double complex Vlu[TMM_N * TMM_N];
@@ -198,15 +196,7 @@ biref_status biref_slab_jones_tmm(const biref_slab *slab, double theta_rad, doub
     if (info != 0) return BIREF_ERR_SINGULAR;
     if (!(rcond >= TMM_MIN_RCOND)) return BIREF_ERR_ILLCOND;
 
-    /* Ambient waves, tangential vectors (Ex, Hz, Ez, Hx); see the header. */
-    const double qi = n * cs;
-    const double psi_in[2][TMM_N] = {{1.0, qi, 0.0, 0.0}, {0.0, 0.0, cs, -n}};  /* incident = transmitted */
-    const double psi_rf[2][TMM_N] = {{1.0, -qi, 0.0, 0.0}, {0.0, 0.0, -cs, -n}}; /* reflected */
-
-    /* W = M psi_t = V diag(exp(i k0 d w)) V^-1 psi_t for t = s, p. */
-    double complex B[TMM_N * 2];
-    for (int p = 0; p < 2; p++)
-        for (int r = 0; r < TMM_N; r++) B[r + TMM_N * p] = psi_in[p][r];
+    /* V diag(exp(i k0 d w)) V^-1 B. */
     info = LAPACKE_zgetrs_work(LAPACK_COL_MAJOR, 'N', TMM_N, 2, Vlu, TMM_N, piv, B, TMM_N);
     if (info != 0) return BIREF_ERR_SINGULAR;
     for (int j = 0; j < TMM_N; j++) {
@@ -214,21 +204,39 @@ biref_status biref_slab_jones_tmm(const biref_slab *slab, double theta_rad, doub
         B[j] *= ph;
         B[j + TMM_N] *= ph;
     }
+    double complex out[TMM_N * 2];
+    for (int p = 0; p < 2; p++)
+        for (int r = 0; r < TMM_N; r++) {
+            double complex m = 0.0;
+            for (int j = 0; j < TMM_N; j++) m += V[r + TMM_N * j] * B[j + TMM_N * p];
+            out[r + TMM_N * p] = m;
+        }
+    memcpy(B, out, sizeof out);
+    return BIREF_OK;
+}
+
+/* Ambient waves, tangential vectors (Ex, Hz, Ez, Hx); see the header. W holds M psi_t for the
+ * transmitted s and p waves (M: the whole structure). */
+static biref_status tmm_boundary(double n, double theta, const double complex W[TMM_N * 2], biref_jones *T,
+                                 biref_jones *R)
+{
+    const double cs = cos(theta), qi = n * cs;
+    const double psi_in[2][TMM_N] = {{1.0, qi, 0.0, 0.0}, {0.0, 0.0, cs, -n}};  /* incident = transmitted */
+    const double psi_rf[2][TMM_N] = {{1.0, -qi, 0.0, 0.0}, {0.0, 0.0, -cs, -n}}; /* reflected */
 
     /* Boundary system S x = b: columns (psi_rs, psi_rp, -W_s, -W_p), unknowns
      * (r_s, r_p, t_s, t_p), one right-hand side -psi_inc per input. */
     double complex S[TMM_N * TMM_N], X[TMM_N * 2];
+    lapack_int piv[TMM_N];
     for (int r = 0; r < TMM_N; r++) {
         S[r] = psi_rf[0][r];
         S[r + TMM_N] = psi_rf[1][r];
         for (int p = 0; p < 2; p++) {
-            double complex m = 0.0;
-            for (int j = 0; j < TMM_N; j++) m += V[r + TMM_N * j] * B[j + TMM_N * p];
-            S[r + TMM_N * (2 + p)] = -m;
+            S[r + TMM_N * (2 + p)] = -W[r + TMM_N * p];
             X[r + TMM_N * p] = -psi_in[p][r];
         }
     }
-    info = LAPACKE_zgesv_work(LAPACK_COL_MAJOR, TMM_N, 2, S, TMM_N, piv, X, TMM_N);
+    lapack_int info = LAPACKE_zgesv_work(LAPACK_COL_MAJOR, TMM_N, 2, S, TMM_N, piv, X, TMM_N);
     if (info != 0) return BIREF_ERR_SINGULAR;
     for (int k = 0; k < TMM_N * 2; k++)
         if (!isfinite(creal(X[k])) || !isfinite(cimag(X[k]))) return BIREF_ERR_ILLCOND;
@@ -245,4 +253,56 @@ biref_status biref_slab_jones_tmm(const biref_slab *slab, double theta_rad, doub
         }
     }
     return BIREF_OK;
+}
+
+/* The transmitted s and p waves' tangential vectors at the bottom plane. */
+static void tmm_transmitted(double n, double theta, double complex B[TMM_N * 2])
+{
+    const double cs = cos(theta);
+    const double psi[2][TMM_N] = {{1.0, n * cs, 0.0, 0.0}, {0.0, 0.0, cs, -n}};
+    for (int p = 0; p < 2; p++)
+        for (int r = 0; r < TMM_N; r++) B[r + TMM_N * p] = psi[p][r];
+}
+
+biref_status biref_slab_jones_tmm(const biref_slab *slab, double theta_rad, double lambda_nm, biref_jones *T,
+                                  biref_jones *R)
+{
+    double a[3];
+    biref_status st = tmm_check(slab, theta_rad, lambda_nm, a);
+    if (st != BIREF_OK) return st;
+    const double n = slab->eta_i;
+    double e[3][3];
+    tmm_tensor(slab->eta_o, slab->eta_e, a, e);
+    double complex B[TMM_N * 2];
+    tmm_transmitted(n, theta_rad, B);
+    double growth = 0.0;
+    st = tmm_layer_apply(e, n * sin(theta_rad), tmm_two_pi / lambda_nm * slab->thickness_nm, &growth, B);
+    if (st != BIREF_OK) return st;
+    return tmm_boundary(n, theta_rad, B, T, R);
+}
+
+biref_status biref_stack_jones_tmm(const biref_stack *stack, double theta_rad, double lambda_nm, biref_jones *T,
+                                   biref_jones *R)
+{
+    if (biref_stack_check(stack, NULL, 0) != BIREF_OK || !tmm_finite_positive(lambda_nm) || !isfinite(theta_rad) ||
+        theta_rad < 0.0 || theta_rad >= tmm_half_pi)
+        return BIREF_ERR_INVALID;
+    const double n = stack->eta_i, K = n * sin(theta_rad);
+    double complex B[TMM_N * 2];
+    tmm_transmitted(n, theta_rad, B);
+    double growth = 0.0;
+    /* psi(0) = M_1 M_2 ... M_N psi(-D): the last layer acts first. */
+    for (int j = stack->n_layers - 1; j >= 0; j--) {
+        const biref_layer *l = &stack->layers[j];
+        double a[3] = {0.0, 1.0, 0.0}, e[3][3];
+        if (!l->isotropic) {
+            biref_slab probe = {l->eta_o, l->eta_e, {l->axis[0], l->axis[1], l->axis[2]}, l->thickness_nm, n};
+            biref_status st = tmm_check(&probe, theta_rad, lambda_nm, a);
+            if (st != BIREF_OK) return st;
+        }
+        tmm_tensor(l->eta_o, l->isotropic ? l->eta_o : l->eta_e, a, e);
+        biref_status st = tmm_layer_apply(e, K, tmm_two_pi / lambda_nm * l->thickness_nm, &growth, B);
+        if (st != BIREF_OK) return st;
+    }
+    return tmm_boundary(n, theta_rad, B, T, R);
 }

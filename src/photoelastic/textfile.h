@@ -1,14 +1,13 @@
-/* Whole-file reading for the photoelastic input parsers (node tables, boundaries). */
+/* Whole-file reading for the photoelastic input parsers: the library's reader (io/textfile.h). */
 #ifndef BIREF_PHOTOELASTIC_TEXTFILE_H
 #define BIREF_PHOTOELASTIC_TEXTFILE_H
 
-#include <stddef.h>
+#include "io/textfile.h"
 
-#include "biref/common.h"
-
-/* Reads path into a malloc'ed buffer (*len bytes, NUL-terminated). At most max_bytes.
- * BIREF_ERR_IO / BIREF_ERR_NOMEM with "cannot read: reason" in msg. */
-biref_status biref_pe_read_text(const char *path, size_t max_bytes, char **text, size_t *len, char *msg,
-                                size_t msg_len);
+static inline biref_status biref_pe_read_text(const char *path, size_t max_bytes, char **text, size_t *len,
+                                              char *msg, size_t msg_len)
+{
+    return biref_read_text(path, max_bytes, text, len, msg, msg_len);
+}
 
 #endif

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The documentation speaks of the repository alone: no paths outside it, no tracker issue numbers,
 # no development sessions, engineers or "this machine"; every relative link and every backquoted
-# repository path (`docs/...`, `examples/...`, ...) names a file or directory that exists.
+# repository path (`docs/...`, `examples/...`, ...) names a file or directory that exists, and every
+# backquoted test (`test_x`, `test_x case`) names a test program or case that exists.
 # (The biref argument of the other command-line tests is accepted and unused.)
 set -u
 root="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -33,6 +34,21 @@ for doc in sys.argv[1:]:
         if "*" not in path and not os.path.exists(path):
             print(f"FAIL ({doc}): names {path}, which does not exist")
             bad += 1
+# A test named in backquotes (`test_x` or `test_x case_name`) is a test program or case that exists.
+tests = ""
+for name in sorted(os.listdir("tests")):
+    if name.endswith((".c", ".cpp", ".h")):
+        tests += open(os.path.join("tests", name), encoding="utf-8").read()
+tests += open("CMakeLists.txt", encoding="utf-8").read()
+for doc in sys.argv[1:]:
+    if "/history/" in doc:
+        continue  # the measurement logs quote tests as they were named then
+    text = open(doc, encoding="utf-8").read()
+    for m in re.finditer(r"`(test_[a-z0-9_]+)(?: ([a-z0-9_]+))?`", text):
+        for name in filter(None, m.groups()):
+            if not re.search(r"\b%s\b" % name, tests):
+                print(f"FAIL ({doc}): names the test {name}, which does not exist")
+                bad += 1
 sys.exit(1 if bad else 0)
 EOF
   fails=$((fails + 1))

@@ -28,6 +28,15 @@ done
 awk -F, '$1 == "rutile 10 µm" && $2 == "crossed s/p" && $3 == "T" { found = 1; if ($4 < 5) exit 1 }
          END { if (!found) exit 1 }' "$out/dispersion_summary.csv" ||
   { echo "FAIL (dispersion: rutile crossed T should differ by dE00 > 5 on average)"; fails=$((fails + 1)); }
+# The stack figures (docs/STACKS.md): spectra of the filters, the cellophane picture, the stressed disk.
+expect_ok "filters quick" figure filters -o "$out" --quick
+expect_ok "tape-art quick" figure tape-art -o "$out" --quick
+expect_ok "stress-thickness quick" figure stress-thickness -o "$out" --quick
+expect_grep "integrated photoelasticity" "\(b\) vs \(a\) mean dE00 0\.0"
+for f in filters.png filters.csv tape_art.png tape_art.csv stress_thickness.png stress_thickness.csv; do
+  [ -s "$out/$f" ] || { echo "FAIL: $f missing or empty"; fails=$((fails + 1)); }
+done
+expect_error "filters without their stacks" figure filters --quick --scenes "$tmpdir/nodir" -o "$tmpdir/fout"
 
 expect_error "unknown figure" figure fig42 -o "$out"
 expect_error "missing figure name" figure -o "$out"

@@ -9,7 +9,7 @@ secs=${1:-20}
 build=${BIREF_FUZZ_BUILD:-build-fuzz}
 jobs=$(nproc 2>/dev/null || echo 2)
 [ "$jobs" -le 2 ] || jobs=2
-targets=(fuzz_scene fuzz_stress_grid fuzz_png)
+targets=(fuzz_scene fuzz_stress_grid fuzz_png fuzz_stack)
 cmake -S . -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBIREF_FUZZ=ON \
   -DBIREF_BUILD_CLI=OFF -DBIREF_BUILD_TESTS=OFF -DBIREF_BUILD_SHARED=OFF -DBIREF_INSTALL=OFF >/dev/null
 cmake --build "$build" -j "$jobs" --target "${targets[@]}"

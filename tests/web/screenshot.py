@@ -59,16 +59,9 @@ def chromium_args(binary, profile, width, height):
             "--disable-quic", "--disable-default-apps", "--disable-extensions", "--mute-audio", "about:blank"]
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("width", type=int)
-    ap.add_argument("height", type=int)
-    ap.add_argument("pages", nargs="+", metavar="URL OUT.png")
-    ap.add_argument("--chromium", default=shutil.which("chromium") or "/usr/bin/chromium")
-    ap.add_argument("--timeout", type=float, default=180)
-    a = ap.parse_args()
-    if len(a.pages) % 2:
-        ap.error("expected pairs of URL and OUT.png")
+def launch(binary, width, height):
+    """Starts Chromium headless with the DevTools pipe in a fresh profile; returns the process,
+    its Pipe and the profile directory (the caller removes it)."""
     profile = tempfile.mkdtemp(prefix="biref-chromium-")
     # Chromium reads commands from fd 3 and writes replies to fd 4. Our ends are moved above 10
     # first, so the dup2 calls in the child cannot overwrite one another.
@@ -84,12 +77,25 @@ def main():
         os.dup2(to_r, 3)
         os.dup2(from_w, 4)
 
-    proc = subprocess.Popen(chromium_args(a.chromium, profile, a.width, a.height), preexec_fn=child_fds,
+    proc = subprocess.Popen(chromium_args(binary, profile, width, height), preexec_fn=child_fds,
                             close_fds=False, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                             stderr=open(os.environ.get("BIREF_CHROMIUM_LOG", os.devnull), "w"))
     os.close(to_r)
     os.close(from_w)
-    cdp = Pipe(proc, to_w, from_r)
+    return proc, Pipe(proc, to_w, from_r), profile
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("width", type=int)
+    ap.add_argument("height", type=int)
+    ap.add_argument("pages", nargs="+", metavar="URL OUT.png")
+    ap.add_argument("--chromium", default=shutil.which("chromium") or "/usr/bin/chromium")
+    ap.add_argument("--timeout", type=float, default=180)
+    a = ap.parse_args()
+    if len(a.pages) % 2:
+        ap.error("expected pairs of URL and OUT.png")
+    proc, cdp, profile = launch(a.chromium, a.width, a.height)
     try:
         target = cdp.call("Target.createTarget", {"url": "about:blank"})["targetId"]
         sess = cdp.call("Target.attachToTarget", {"targetId": target, "flatten": True})["sessionId"]

@@ -9,13 +9,10 @@ Prints one line per page: first frame (shader compile included) and the median o
 each frame timed to a finished picture (a one-pixel read-back). Uses tests/web/screenshot.py's
 DevTools pipe; Python's standard library only."""
 import argparse
-import fcntl
 import json
 import os
 import shutil
-import subprocess
 import sys
-import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -32,27 +29,7 @@ def main():
     ap.add_argument("examples", nargs="*", default=["fig9c", "polariscope", "gem", "sheet"])
     a = ap.parse_args()
     base = "file://" + os.path.join(ROOT, "web", "three", "examples", "index.html")
-    profile = tempfile.mkdtemp(prefix="biref-chromium-")
-    # Our ends above fd 10, so the child's dup2 onto 3 and 4 cannot overwrite one another.
-    def high(fd):
-        moved = fcntl.fcntl(fd, fcntl.F_DUPFD_CLOEXEC, 10)
-        os.close(fd)
-        return moved
-
-    to_r, to_w = (high(fd) for fd in os.pipe())
-    from_r, from_w = (high(fd) for fd in os.pipe())
-
-    def child_fds():
-        os.dup2(to_r, 3)
-        os.dup2(from_w, 4)
-
-    binary = shutil.which("chromium") or "/usr/bin/chromium"
-    proc = subprocess.Popen(screenshot.chromium_args(binary, profile, a.width, a.height), preexec_fn=child_fds,
-                            close_fds=False, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL)
-    os.close(to_r)
-    os.close(from_w)
-    cdp = screenshot.Pipe(proc, to_w, from_r)
+    proc, cdp, profile = screenshot.launch(shutil.which("chromium") or "/usr/bin/chromium", a.width, a.height)
     try:
         target = cdp.call("Target.createTarget", {"url": "about:blank"})["targetId"]
         sess = cdp.call("Target.attachToTarget", {"targetId": target, "flatten": True})["sessionId"]

@@ -1,12 +1,12 @@
-/* Whole-file reading for the photoelastic input parsers. */
+/* Whole-file reading for the library's input parsers (io/textfile.h). */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "photoelastic/textfile.h"
+#include "io/textfile.h"
 
-biref_status biref_pe_read_text(const char *path, size_t max_bytes, char **text, size_t *len, char *msg,
+biref_status biref_read_text(const char *path, size_t max_bytes, char **text, size_t *len, char *msg,
                                 size_t msg_len)
 {
     *text = NULL;

@@ -1,0 +1,51 @@
+/* Internal pieces of the stacks' band integrals (src/spectral/stack_*.c), shared with the tests. */
+#ifndef BIREF_SPECTRAL_STACK_INTERNAL_H
+#define BIREF_SPECTRAL_STACK_INTERNAL_H
+
+#include <complex.h>
+
+#include "biref/experimental.h"
+#include "biref/stack.h"
+
+/* The adaptive numeric integration doubles its samples from FIRST up to MAX. */
+#define BIREF_STACK_ADAPTIVE_FIRST 256
+#define BIREF_STACK_ADAPTIVE_MAX 65536
+
+/* Midpoint integration with a plan's samples: the four pairs and the light's XYZ (may be NULL). */
+void biref_stack_spectrum_numeric(const biref_numeric_plan *plan, const biref_stack_state *st,
+                                  const biref_light *light, biref_spectrum *out, double mixed_T[3], double mixed_R[3]);
+
+/* sum_{i,j,o} C_ij (J P)_io conj((J P)_jo): the intensity a light detects through Jones matrix J. */
+double biref_stack_detected(const biref_light *light, const double complex J[2][2]);
+
+/* Numeric integration with 256, 512, ... samples until two successive runs agree to tolerance
+ * (every pair and the light's XYZ, mixed[T/R][band]); *converged = 0 when MAX samples were reached
+ * first (the last run is returned). BIREF_ERR_NOMEM. */
+biref_status biref_stack_numeric_adaptive(const biref_spectral *sp, const biref_stack_state *st,
+                                          const biref_light *light, double tolerance, biref_spectrum *out,
+                                          double mixed[2][3], int *samples, int *converged);
+
+/* A path group: paths of one optical path phi (nm, real: no evanescent layer) leaving through one
+ * face; M[in][out] their summed amplitude. */
+typedef struct {
+    double phi;
+    double complex M[2][2];
+} biref_stack_group;
+
+typedef struct {
+    biref_stack_group *g[2]; /* [0] bottom (transmission), [1] top (reflection), sorted by phi */
+    int n[2];
+    int legs;           /* generations followed (the longest path kept, in legs) */
+    double bound;       /* 2A + 3A^2, A = sum of sqrt(power) of the dropped and unfinished paths */
+    const char *reason; /* non-NULL: no expansion (fall back), and why */
+} biref_stack_groups;
+
+/* Follows the paths (o/e legs, reflections at every interface), merging equal optical paths,
+ * until bound <= tolerance. reason set (status OK) when a layer is evanescent, when more than
+ * max_groups groups leave one face, or when the bound is not met within the leg limit.
+ * BIREF_ERR_NOMEM. Free with biref_stack_groups_free. */
+biref_status biref_stack_path_groups(const biref_stack_state *st, double tolerance, int max_groups,
+                                     biref_stack_groups *out);
+void biref_stack_groups_free(biref_stack_groups *g);
+
+#endif

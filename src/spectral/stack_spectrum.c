@@ -1,0 +1,184 @@
+/* Band integrals of a stack: the entry point, and the path expansion (docs/STACKS.md §2): J(k) = sum_g M_g e^{ik phi_g}
+ * over the path groups of stack_paths.c, so |J|^2 integrates exactly, pair by pair, with the
+ * S(cos), S(sin) table; thick layers (pairs beyond the table's far limit) come out incoherent as
+ * in the slab. Where the expansion does not apply, adaptive numeric integration instead. */
+#include <complex.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "biref/stack.h"
+#include "error.h"
+#include "spectral/spectral_internal.h"
+#include "spectral/stack_internal.h"
+
+/* N = M P (the analyzer applied), for the light's intensity. */
+static void analyzed(const biref_light *l, const double complex M[2][2], double complex N[2][2])
+{
+    for (int i = 0; i < 2; i++)
+        for (int o = 0; o < 2; o++) N[i][o] = l->has_analyzer ? M[i][0] * l->P[0][o] + M[i][1] * l->P[1][o] : M[i][o];
+}
+
+/* sum_{i,j,o} C_ij N_g[i][o] conj(N_h[j][o]). */
+static double complex light_pair(const biref_light *l, const double complex Ng[2][2], const double complex Nh[2][2])
+{
+    double complex c = 0.0;
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++)
+            for (int o = 0; o < 2; o++) c += l->C[i][j] * Ng[i][o] * conj(Nh[j][o]);
+    return c;
+}
+
+/* The band integrals of |sum_g M_g e^{ik phi_g}|^2 for one face: X[in][out][band] and, with a light,
+ * its detected intensity (N: the groups' matrices with the analyzer applied, n of them). */
+static void pair_sums(const biref_spectral *sp, const biref_stack_group *g, int n, const biref_light *light,
+                      const double complex (*N)[2][2], double X[2][2][3], double mixed[3])
+{
+    memset(X, 0, sizeof(double[2][2][3]));
+    memset(mixed, 0, sizeof(double[3]));
+    for (int a = 0; a < n; a++) {
+        for (int i = 0; i < 2; i++)
+            for (int o = 0; o < 2; o++) {
+                double p = creal(g[a].M[i][o] * conj(g[a].M[i][o]));
+                for (int b = 0; b < 3; b++) X[i][o][b] += p;
+            }
+        if (light) {
+            double p = creal(light_pair(light, N[a], N[a]));
+            for (int b = 0; b < 3; b++) mixed[b] += p;
+        }
+        for (int h = a + 1; h < n; h++) {
+            const double delta = g[h].phi - g[a].phi; /* >= 0: sorted */
+            if (delta > sp->d_far) break;           /* S is 0 there, and for every later h */
+            double C[3], S[3];
+            biref_spectral_phase_integrals(sp, delta, C, S);
+            /* 2 Re(c S(e^{-ik delta})) with S(e^{-ik delta}) = C - i S. */
+            for (int i = 0; i < 2; i++)
+                for (int o = 0; o < 2; o++) {
+                    double complex c = g[a].M[i][o] * conj(g[h].M[i][o]);
+                    for (int b = 0; b < 3; b++) X[i][o][b] += 2 * (creal(c) * C[b] + cimag(c) * S[b]);
+                }
+            if (light) {
+                double complex c = light_pair(light, N[a], N[h]);
+                for (int b = 0; b < 3; b++) mixed[b] += 2 * (creal(c) * C[b] + cimag(c) * S[b]);
+            }
+        }
+    }
+}
+
+/* Both faces' pair sums; BIREF_ERR_NOMEM. */
+static biref_status face_sums(const biref_spectral *sp, const biref_stack_groups *g, const biref_light *light,
+                              biref_spectrum *out, double mixed[2][3])
+{
+    double complex(*N)[2][2] = NULL;
+    const int most = g->n[0] > g->n[1] ? g->n[0] : g->n[1];
+    if (light && most > 0) {
+        N = malloc((size_t)most * sizeof *N);
+        if (!N) return BIREF_ERR_NOMEM;
+    }
+    for (int f = 0; f < 2; f++) {
+        if (light)
+            for (int k = 0; k < g->n[f]; k++) analyzed(light, g->g[f][k].M, N[k]);
+        pair_sums(sp, g->g[f], g->n[f], light, (const double complex(*)[2][2])N, f ? out->R : out->T, mixed[f]);
+    }
+    free(N);
+    return BIREF_OK;
+}
+
+void biref_stack_spectrum_opts_default(biref_stack_spectrum_opts *o)
+{
+    o->method = BIREF_METHOD_EXPANSION;
+    o->samples = 64;
+    o->tolerance = 1e-3;
+    o->max_groups = 1024;
+}
+
+static biref_status check_opts(const biref_stack_spectrum_opts *o, char *msg, size_t msg_len)
+{
+    if (o->method == BIREF_METHOD_ANALYTIC)
+        return biref_fail(msg, msg_len, "a stack has no analytic method (the paper's eq. 26 is for one slab): use "
+                                        "expansion, numeric or ground-truth");
+    if (o->method != BIREF_METHOD_EXPANSION && o->method != BIREF_METHOD_NUMERIC &&
+        o->method != BIREF_METHOD_GROUND_TRUTH)
+        return biref_fail(msg, msg_len, "unknown method %d", (int)o->method);
+    if (o->method == BIREF_METHOD_NUMERIC && (o->samples < 1 || o->samples > (1 << 24)))
+        return biref_fail(msg, msg_len, "%d samples: the numeric method needs 1 to %d", o->samples, 1 << 24);
+    if (!(o->tolerance >= 1e-9 && o->tolerance <= 0.1))
+        return biref_fail(msg, msg_len, "tolerance %g: expected 1e-9 to 0.1", o->tolerance);
+    if (o->max_groups < 1 || o->max_groups > (1 << 16))
+        return biref_fail(msg, msg_len, "max_groups %d: expected 1 to %d", o->max_groups, 1 << 16);
+    return BIREF_OK;
+}
+
+/* A fixed number of samples (numeric, ground truth). */
+static biref_status numeric_fixed(const biref_spectral *sp, const biref_stack_state *st, int samples,
+                                  const biref_light *light, biref_spectrum *out, double mixed[2][3], char *msg,
+                                  size_t msg_len)
+{
+    biref_numeric_plan *plan = NULL;
+    biref_status s = biref_numeric_plan_create(sp, samples, &plan, msg, msg_len);
+    if (s != BIREF_OK) return s;
+    biref_stack_spectrum_numeric(plan, st, light, out, mixed[0], mixed[1]);
+    biref_numeric_plan_destroy(plan);
+    return BIREF_OK;
+}
+
+/* The path expansion, or the adaptive numeric integration where it does not apply. */
+static biref_status expansion(const biref_spectral *sp, const biref_stack_state *st,
+                              const biref_stack_spectrum_opts *o, const biref_light *light, biref_spectrum *out,
+                              double mixed[2][3], biref_stack_spectrum_info *info, char *msg, size_t msg_len)
+{
+    biref_stack_groups g;
+    biref_status s = biref_stack_path_groups(st, o->tolerance, o->max_groups, &g);
+    if (s != BIREF_OK) return biref_fail_status(s, msg, msg_len, "out of memory");
+    info->legs = g.legs;
+    info->bound = g.bound;
+    if (!g.reason) {
+        info->groups[0] = g.n[0];
+        info->groups[1] = g.n[1];
+        s = face_sums(sp, &g, light, out, mixed);
+        biref_stack_groups_free(&g);
+        return s == BIREF_OK ? s : biref_fail_status(s, msg, msg_len, "out of memory");
+    }
+    info->fallback = 1;
+    info->reason = g.reason;
+    int converged;
+    s = biref_stack_numeric_adaptive(sp, st, light, o->tolerance, out, mixed, &info->samples, &converged);
+    if (s != BIREF_OK) return biref_fail_status(s, msg, msg_len, "out of memory");
+    info->bound = converged ? o->tolerance : NAN;
+    return BIREF_OK;
+}
+
+biref_status biref_stack_spectrum(const biref_spectral *sp, const biref_stack_state *st,
+                                  const biref_stack_spectrum_opts *opts, const biref_light *light, biref_spectrum *out,
+                                  double mixed_T[3], double mixed_R[3], biref_stack_spectrum_info *info, char *msg,
+                                  size_t msg_len)
+{
+    biref_stack_spectrum_opts o;
+    if (opts)
+        o = *opts;
+    else
+        biref_stack_spectrum_opts_default(&o);
+    if (!sp || !st || !out) return biref_fail(msg, msg_len, "no spectral context, state or output");
+    biref_status s = check_opts(&o, msg, msg_len);
+    if (s != BIREF_OK) return s;
+    biref_stack_spectrum_info local;
+    if (!info) info = &local;
+    memset(info, 0, sizeof *info);
+    info->reason = "";
+    double mixed[2][3] = {{0, 0, 0}, {0, 0, 0}};
+    if (o.method == BIREF_METHOD_EXPANSION) {
+        s = expansion(sp, st, &o, light, out, mixed, info, msg, msg_len);
+    } else {
+        info->samples = o.method == BIREF_METHOD_GROUND_TRUTH ? BIREF_GROUND_TRUTH_SAMPLES : o.samples;
+        s = numeric_fixed(sp, st, info->samples, light, out, mixed, msg, msg_len);
+    }
+    if (s != BIREF_OK) return s;
+    if (mixed_T) memcpy(mixed_T, mixed[0], sizeof mixed[0]);
+    if (mixed_R) memcpy(mixed_R, mixed[1], sizeof mixed[1]);
+    for (int i = 0; i < 2; i++)
+        for (int k = 0; k < 2; k++)
+            for (int b = 0; b < 3; b++)
+                if (!isfinite(out->T[i][k][b]) || !isfinite(out->R[i][k][b]))
+                    return biref_fail_status(BIREF_ERR_ILLCOND, msg, msg_len, "numerical failure (non-finite result)");
+    return BIREF_OK;
+}

@@ -48,7 +48,6 @@ MAX_FUNCTION_LINES = 120
 # stays the list of offenders); never raise a number.
 ALLOWED_FILES = {
     # path under src/: lines
-    "photoelastic/mesh.c": 772,
 }
 ALLOWED_FUNCTIONS = {
     # (path under src/, function): lines from its opening to its closing brace
@@ -63,13 +62,22 @@ ALLOWED_CALL_MODULE_CYCLES = [
     # link level, modules (none today)
 ]
 # Cycles between files through calls are reported (with the allow-list's verdicts as notes) but
-# fail the check only once this is True (the renderer's circle is broken; the spectral module's
-# remains).
+# fail the check only once this is True (the renderer's circle hit_frames -> render -> shade is
+# broken; turn it on once the list below holds only circles that are meant to stay).
 FAIL_ON_CALL_FILE_CYCLES = False
 ALLOWED_CALL_FILE_CYCLES = [
     # link level, files: the sorted tuple of the files of one strongly connected set
     ("optics/material.c", "optics/material_table.c"),
     ("photoelastic/polariscope.c", "photoelastic/shade_integrated.c"),
+    # dispersive materials: each method's file calls the other's entry points
+    # (biref_spectrum_numeric_dispersive*, biref_integrate_material_closed_form*)
+    ("spectral/analytic_dispersive.c", "spectral/numeric_dispersive.c"),
+    # the spectral methods: numeric_jones.c asks analytic_packet.c which instruction sets the CPU
+    # has (biref_simd_isa_supported), and analytic_packet.c falls back through coherent.c and
+    # numeric.c to numeric_jones.c; the instruction-set choice in a file of its own breaks it
+    ("spectral/analytic_packet.c", "spectral/analytic_packet_avx2.c", "spectral/analytic_packet_avx512.c",
+     "spectral/analytic_packet_baseline.c", "spectral/coherent.c", "spectral/numeric.c",
+     "spectral/numeric_jones.c", "spectral/phase_prefilter.c", "spectral/spectral_context.c"),
 ]
 
 SOURCE = re.compile(r"\.(c|h|inc)$")

@@ -16,6 +16,7 @@
 #include <stdio.h>
 
 #include "biref/common.h"
+#include "biref/material.h"
 #include "biref/polarization.h"
 #include "biref/spectral.h"
 
@@ -45,6 +46,10 @@ typedef struct {
     double axis[3];     /* optic axis in the local frame (x = tangent, y = normal, z = x cross y), unit */
     double eta_o, eta_e;
     double thickness_nm;
+    /* A named dispersive material (scene key "material", material.h) instead of eta_o, eta_e
+     * (then 0), or NULL. The renderer integrates its slabs with n(λ) (biref_integrate_material):
+     * point look-ups (no prefilter), the CPU backend only. */
+    const biref_material *material;
 } biref_scene_slab;
 
 /* An emitting rectangle (both faces), seen along rays that leave a slab or the camera. */

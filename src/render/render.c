@@ -40,6 +40,19 @@ static biref_status check_render_options(const biref_render_options *opt, char *
     return BIREF_OK;
 }
 
+/* Dispersive slabs: physical over the spectral band (one line, "slabs[i].material: ..."). */
+static biref_status check_materials(const biref_spectral *sp, const biref_scene *scene, char *msg, size_t msg_len)
+{
+    const biref_cmf_band *band = biref_spectral_band(sp);
+    for (int i = 0; i < scene->n_slabs; i++) {
+        const biref_material *m = scene->slabs[i].material;
+        char why[BIREF_MSG_SIZE];
+        if (m && biref_material_check_band(m, band->lmin_nm, band->lmax_nm, why, sizeof why) != BIREF_OK)
+            return biref_fail(msg, msg_len, "slabs[%d].material: %s", i, why);
+    }
+    return BIREF_OK;
+}
+
 static void slabs_init(biref_renderer *r, const biref_scene *scene)
 {
     r->n_slabs = scene->n_slabs;
@@ -57,8 +70,11 @@ static void slabs_init(biref_renderer *r, const biref_scene *scene)
         double rel[3];
         v3_sub(sl->center, r->cam.origin, rel);
         sl->center_n = v3_dot(rel, sl->normal);
-        sl->base.eta_o = in->eta_o;
-        sl->base.eta_e = in->eta_e;
+        /* A dispersive slab's hits are integrated with n(λ) (biref_shader_eval_material); its base
+         * indices only stand in for the frames' and the kernel's set-up. */
+        sl->material = in->material;
+        sl->base.eta_o = in->material ? 1.5 : in->eta_o;
+        sl->base.eta_e = in->material ? 1.5 : in->eta_e;
         sl->base.thickness_nm = in->thickness_nm;
         sl->base.eta_i = scene->eta_medium;
         memcpy(sl->base.axis, in->axis, sizeof sl->base.axis);
@@ -106,6 +122,7 @@ biref_status biref_renderer_create(const biref_spectral *sp, const biref_scene *
     if (!sp || !scene || !opt) return biref_fail(msg, msg_len, "no spectral context, scene or options");
     biref_status s = biref_scene_validate(scene, msg, msg_len);
     if (!s) s = check_render_options(opt, msg, msg_len);
+    if (!s) s = check_materials(sp, scene, msg, msg_len);
     if (s) return s;
 
     biref_renderer *r = calloc(1, sizeof *r);
@@ -175,13 +192,18 @@ static void render_pixels(const biref_renderer *r, render_tile *tile, int x0, in
     for (int done = 0, total = np * KK; done < total; done += tile->n) {
         tile->n = total - done < RENDER_TILE ? total - done : RENDER_TILE;
         for (int j = 0; j < tile->n; j++) {
+            if (K == 1) { /* the pixel centres, without the divisions below */
+                tile->fx[j] = x0 + j + 0.5;
+                tile->fy[j] = y + 0.5;
+                continue;
+            }
             const int q = done + j, x = x0 + q / KK, s = q % KK;
-            tile->fx[j] = x + (K == 1 ? 0.5 : (s % K + jitter(x, y, s, 0x9e3779b9u)) * h);
-            tile->fy[j] = y + (K == 1 ? 0.5 : (s / K + jitter(x, y, s, 0x7f4a7c15u)) * h);
+            tile->fx[j] = x + (s % K + jitter(x, y, s, 0x9e3779b9u)) * h;
+            tile->fy[j] = y + (s / K + jitter(x, y, s, 0x7f4a7c15u)) * h;
         }
         biref_render_tile(r, tile, counts);
         for (int j = 0; j < tile->n; j++) {
-            const int p = (done + j) / KK;
+            const int p = K == 1 ? j : (done + j) / KK;
             for (int c = 0; c < 3; c++) acc[p][c] += tile->xyz[c][j];
             hit[p] |= tile->slab[j] >= 0.0;
         }

@@ -80,9 +80,10 @@ biref_status biref_scene_validate(const biref_scene *sc, char *msg, size_t msg_l
         if (!unit_vec(sl->tangent) || fabs(v3_dot(sl->tangent, sl->normal)) > 1e-6)
             return SLAB_FAIL("tangent", "must be a unit vector orthogonal to the normal");
         if (!unit_vec(sl->axis)) return SLAB_FAIL("axis", "must be a unit vector");
-        if (!(isfinite(sl->eta_o) && sl->eta_o > 0)) return SLAB_FAIL("eta_o", "must be positive");
-        if (!(isfinite(sl->eta_e) && sl->eta_e > 0)) return SLAB_FAIL("eta_e", "must be positive");
-        if (sl->eta_o > BIREF_MAX_INDEX || sl->eta_e > BIREF_MAX_INDEX)
+        /* A dispersive material is checked over the renderer's band when it is created. */
+        if (!sl->material && !(isfinite(sl->eta_o) && sl->eta_o > 0)) return SLAB_FAIL("eta_o", "must be positive");
+        if (!sl->material && !(isfinite(sl->eta_e) && sl->eta_e > 0)) return SLAB_FAIL("eta_e", "must be positive");
+        if (!sl->material && (sl->eta_o > BIREF_MAX_INDEX || sl->eta_e > BIREF_MAX_INDEX))
             return SLAB_FAIL(sl->eta_o > BIREF_MAX_INDEX ? "eta_o" : "eta_e",
                              "must be at most %g, the largest refractive index biref takes", BIREF_MAX_INDEX);
         /* The camera inside a slab sees no well-defined front face. Scene units are metres,

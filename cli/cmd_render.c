@@ -27,6 +27,7 @@ typedef struct {
     const char *out, *pfm, *chroma, *scene_path;
     long width, height, threads, samples, supersample;
     int json, gl, antialias;
+    int stack_slabs; /* slabs given as stacks (layers) */
     biref_render_options opt;
 } render_args;
 
@@ -220,6 +221,14 @@ static int print_report(const render_args *a, const render_result *res)
             cJSON_AddNumberToObject(root, "samples", samples_used);
         else
             cJSON_AddNullToObject(root, "samples");
+        /* A stack has no analytic method: the analytic method renders stacks by their expansion. */
+        cJSON_AddNumberToObject(root, "stack_slabs", a->stack_slabs);
+        if (a->stack_slabs)
+            cJSON_AddStringToObject(root, "stack_method", opt->method == BIREF_METHOD_ANALYTIC
+                                                              ? "expansion"
+                                                              : biref_method_name(opt->method));
+        else
+            cJSON_AddNullToObject(root, "stack_method");
         cJSON_AddStringToObject(root, "antialias", opt->antialias == BIREF_ANTIALIAS_PREFILTER ? "prefilter" : "none");
         cJSON_AddNumberToObject(root, "supersample", opt->supersample);
         cJSON_AddNumberToObject(root, "ms", round(res->ms * 1000) / 1000);
@@ -259,7 +268,17 @@ int cmd_render(int argc, char **argv)
     biref_scene scene;
     int rc = cli_load_scene(CMD, a.scene_path, &scene);
     if (!rc) rc = cli_scene_resize(CMD, &scene, a.width, a.height);
+    if (!rc && a.gl) rc = cli_gl_refuse_stacks(CMD, a.scene_path, &scene);
     if (rc) return rc;
+    for (int i = 0; i < scene.n_slabs; i++)
+        if (scene.slabs[i].n_layers) {
+            a.stack_slabs++;
+            if (a.antialias == BIREF_ANTIALIAS_PREFILTER)
+                return cli_error(CMD, "%s: slabs[%d] is a stack (layers), whose integration has no prefilter: "
+                                      "anti-alias by --supersample",
+                                 a.scene_path, i),
+                       CLI_EXIT_USAGE;
+        }
     /* Fail on a bad output path before rendering for seconds, not after. */
     const char *inputs[2] = {a.scene_path, a.out};
     if ((rc = cli_check_output(CMD, a.out, inputs, 1)) || (a.pfm && (rc = cli_check_output(CMD, a.pfm, inputs, 2))) ||

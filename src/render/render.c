@@ -10,6 +10,7 @@
 #include "error.h"
 #include "render/render_internal.h"
 #include "render/render_tile.h"
+#include "render/scene_fields.h"
 #include "spectral/integrator_internal.h"
 #include "shading/vec3.h"
 
@@ -57,6 +58,7 @@ static void slabs_init(biref_renderer *r, const biref_scene *scene)
         double rel[3];
         v3_sub(sl->center, r->cam.origin, rel);
         sl->center_n = v3_dot(rel, sl->normal);
+        sl->is_stack = biref_scene_slab_stack(scene, in, &sl->stack) == BIREF_OK;
         sl->base.eta_o = in->eta_o;
         sl->base.eta_e = in->eta_e;
         sl->base.thickness_nm = in->thickness_nm;

@@ -29,6 +29,8 @@ typedef struct {
     double axis_world[3]; /* optic axis in world coordinates, unit */
     biref_slab base;      /* indices, thickness, eta_i; axis filled per ray */
     double center_n;      /* (center - camera origin) . normal: the camera ray's plane distance */
+    int is_stack;         /* a stack slab: base unused (the packet kernel's work on it is discarded) */
+    biref_stack stack;    /* is_stack: axes in the local frame, layers from the +normal face */
 } render_slab;
 
 typedef struct {
@@ -75,6 +77,10 @@ void biref_render_radiance(const biref_renderer *r, const double from[3], const 
  * directions, for the prefilter's footprint (NULL: point phase integrals). */
 int biref_render_shade_pixel(const biref_renderer *r, const double dir[3], const double dx[3], const double dy[3],
                              double xyz[3], int *fallback);
+/* One hit's transmission and reflection factors: the slab's (footprint fp, may be NULL) or the
+ * stack's (docs/STACKS.md §5). */
+biref_status biref_render_eval(const biref_renderer *r, const render_slab *sl, const biref_hit_frames *fr,
+                               const biref_opl_footprint *fp, double T[3], double R[3]);
 /* The nearest slab along the camera ray dir (NULL: none), its distance in *t. */
 const render_slab *biref_render_nearest_slab(const biref_renderer *r, const double dir[3], double *t);
 /* A pixel that hits no slab: the background through the filter. */

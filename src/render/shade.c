@@ -65,6 +65,13 @@ void biref_render_hit_colour(const biref_renderer *r, const double hp[3], const 
     for (int i = 0; i < 3; i++) xyz[i] = tT[i] * Lb[i] + tR[i] * Lf[i];
 }
 
+biref_status biref_render_eval(const biref_renderer *r, const render_slab *sl, const biref_hit_frames *fr,
+                               const biref_opl_footprint *fp, double T[3], double R[3])
+{
+    if (sl->is_stack) return biref_shader_eval_stack(r->shader, fr, sl->normal, sl->tangent, &sl->stack, T, R);
+    return biref_shader_eval(r->shader, fr, fp, T, R);
+}
+
 int biref_render_shade_pixel(const biref_renderer *r, const double dir[3], const double dx[3], const double dy[3],
                              double xyz[3], int *fallback)
 {
@@ -82,7 +89,7 @@ int biref_render_shade_pixel(const biref_renderer *r, const double dir[3], const
     double tT[3], tR[3];
     biref_opl_footprint fp;
     if (r->prefilter && dx && dy) biref_render_footprint(r, hit, dir, dx, dy, &fp);
-    if (biref_shader_eval(r->shader, &fr, r->prefilter && dx && dy ? &fp : NULL, tT, tR) != BIREF_OK) {
+    if (biref_render_eval(r, hit, &fr, r->prefilter && dx && dy ? &fp : NULL, tT, tR) != BIREF_OK) {
         *fallback = 1;
         biref_shader_failed_hit(r->shader, &fr, tT, tR);
     }

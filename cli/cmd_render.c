@@ -61,7 +61,8 @@ static const cli_opt OPTS[] = {
     CLI_CUSTOM("method", "M", OPT_METHOD,
                "analytic (default; the paper's eq. 26), numeric, ground-truth\n"
                "(numeric with " STR(BIREF_GROUND_TRUTH_SAMPLES) " samples) or expansion (exact integral of the\n"
-               "path-group expansion; any polarizer, docs/PHYSICS.md §5)"),
+               "path-group expansion; any polarizer, docs/PHYSICS.md §5); stack slabs:\n"
+               "analytic and expansion by the stack expansion (docs/STACKS.md §5)"),
     CLI_CUSTOM("backend", "B", OPT_BACKEND,
                "cpu (default) or gl: the analytic method as a GLSL shader through\n"
                "EGL and OpenGL >= 4.3 (any polarizer; docs/GPU.md)"),

@@ -136,7 +136,7 @@ static void prefilter_and_supersample_options_are_checked(void)
 }
 
 /* Re(opl) of the legs of a ray along dir through the slab's hit frame and the modes' normal
- * components (biref_render_hit_frames, biref_uniaxial_normal_components): the footprint's
+ * components (biref_shading_frames, biref_uniaxial_normal_components): the footprint's
  * frame-free dot products must give the same paths. */
 static void legs_through_the_frame(const render_slab *sl, const double dir[3], double opl[4])
 {

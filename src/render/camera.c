@@ -1,4 +1,4 @@
-/* Pinhole camera: one ray through each pixel centre. */
+/* Pinhole camera: its frame and image-plane extent (the tiles make the rays, render_tile_lanes.inc). */
 #include <math.h>
 
 #include "render/render_internal.h"
@@ -24,22 +24,4 @@ void biref_render_camera_init(render_camera *c, const biref_camera *cam)
     /* fov_deg is vertical; square pixels fix the horizontal extent. */
     c->tan_half_v = tan(0.5 * cam->fov_deg * M_PI / 180.0);
     c->tan_half_h = c->tan_half_v * (double)cam->width / (double)cam->height;
-}
-
-void biref_render_camera_ray_at(const render_camera *c, double fx, double fy, double dir[3])
-{
-    double sx = (2.0 * fx / c->width - 1.0) * c->tan_half_h;
-    double sy = (1.0 - 2.0 * fy / c->height) * c->tan_half_v;
-    double d[3];
-    for (int i = 0; i < 3; i++) d[i] = c->forward[i] + sx * c->right[i] + sy * c->up[i];
-    v3_normalize(d, dir);
-}
-
-void biref_render_camera_ray(const render_camera *c, int x, int y, double dir[3])
-{
-    double sx = (2.0 * (x + 0.5) / c->width - 1.0) * c->tan_half_h;
-    double sy = (1.0 - 2.0 * (y + 0.5) / c->height) * c->tan_half_v;
-    double d[3];
-    for (int i = 0; i < 3; i++) d[i] = c->forward[i] + sx * c->right[i] + sy * c->up[i];
-    v3_normalize(d, dir);
 }

@@ -30,14 +30,3 @@ void biref_render_footprint_rays(const biref_renderer *r, const render_slab *sl,
         for (int l = 0; l < 4; l++) fp->grad[l][a] = biref_leg_grad(ok, o1[l], o0[l]);
     }
 }
-
-void biref_render_footprint(const biref_renderer *r, const render_slab *sl, const double dir[3], const double dx[3],
-                            const double dy[3], biref_opl_footprint *fp)
-{
-    double d[2][3];
-    v3_axpy(dir, 1.0, dx, d[0]);
-    v3_normalize(d[0], d[0]);
-    v3_axpy(dir, 1.0, dy, d[1]);
-    v3_normalize(d[1], d[1]);
-    biref_render_footprint_rays(r, sl, dir, d[0], d[1], fp);
-}

@@ -4,7 +4,7 @@
  *
  * Re(opl) of the four leg types (biref_opl_footprint order) are the normal components of
  * biref_uniaxial_normal_components (modes.c) times the thickness. In the ray's transmission frame
- * (biref_render_hit_frames: y the normal away from the viewer, z the ray's tangential direction)
+ * (ray_frame.h: y the normal away from the viewer, z the ray's tangential direction)
  * the e wave's dispersion relation needs only K^2 = eta_i^2 sin^2(theta) = eta_i^2 (1 - dn^2),
  * be = a.y = sign(dn) a.n, ga K = eta_i a.(dir - dn n) and al^2 K^2 = K^2 (1 - be^2) - (ga K)^2
  * (a unit): dot products with the ray (dn = dir.n, ad = dir.a), no acos, sin or frame per

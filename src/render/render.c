@@ -83,6 +83,23 @@ static void panels_init(biref_renderer *r, const biref_scene *scene)
     }
 }
 
+/* The environment's radiances in XYZ and the ground plane's axes (a checker's tiles). */
+static void env_init(render_env *e, const biref_environment *env)
+{
+    e->type = env->type;
+    memcpy(e->up, env->up, sizeof e->up);
+    double a[3] = {1, 0, 0};
+    if (fabs(e->up[0]) > 0.9) v3_set(a, 0, 0, 1);
+    v3_orthonormalize(a, e->up, e->e1);
+    v3_cross(e->up, e->e1, e->e2);
+    biref_linear_srgb_to_xyz(env->zenith, e->zenith);
+    biref_linear_srgb_to_xyz(env->horizon, e->horizon);
+    biref_linear_srgb_to_xyz(env->ground, e->ground);
+    biref_linear_srgb_to_xyz(env->check_a, e->check_a);
+    biref_linear_srgb_to_xyz(env->check_b, e->check_b);
+    e->check_size = env->check_size;
+}
+
 biref_status biref_renderer_create(const biref_spectral *sp, const biref_scene *scene, const biref_render_options *opt,
                                    biref_renderer **out, char *msg, size_t msg_len)
 {
@@ -100,7 +117,7 @@ biref_status biref_renderer_create(const biref_spectral *sp, const biref_scene *
     r->exposure = scene->camera.exposure;
     slabs_init(r, scene);
     panels_init(r, scene);
-    biref_render_env_init(&r->env, &scene->env);
+    env_init(&r->env, &scene->env);
     r->tile_isa = biref_render_tile_isa();
 
     biref_integrator_options io;
@@ -145,77 +162,55 @@ static double jitter(int x, int y, int s, uint32_t salt)
     return (h >> 8) * (1.0 / 16777216.0);
 }
 
-/* K x K stratified jittered samples of pixel (x, y), box-filtered; with the prefilter each
- * sample's footprint is its stratum (steps of 1/K pixel to the neighbouring samples). Returns
- * 1 if any sample hit a slab; *fallback counts failed slab evaluations. */
-static int sample_pixel(const biref_renderer *r, int x, int y, double xyz[3], int *fallback)
+/* Pixels x0 .. x0 + np - 1 of row y, K x K stratified jittered samples each (one through the
+ * centre when K = 1), box-filtered; with the prefilter each sample's footprint is its stratum
+ * (steps of 1/K pixel to the neighbouring samples). The samples go through tiles in pixel order
+ * (a pixel's may span several tiles), so each pixel sums its samples in one order. */
+static void render_pixels(const biref_renderer *r, render_tile *tile, int x0, int np, int y, float *row,
+                          render_tile_counts *counts)
 {
-    const int K = r->opt.supersample;
+    const int K = r->opt.supersample, KK = K * K;
     const double h = 1.0 / K;
-    int hit = 0;
-    *fallback = 0;
-    xyz[0] = xyz[1] = xyz[2] = 0.0;
-    for (int j = 0; j < K; j++)
-        for (int i = 0; i < K; i++) {
-            int s = j * K + i, fb;
-            double fx = x + (K == 1 ? 0.5 : (i + jitter(x, y, s, 0x9e3779b9u)) * h);
-            double fy = y + (K == 1 ? 0.5 : (j + jitter(x, y, s, 0x7f4a7c15u)) * h);
-            double dir[3], c[3], dx[3], dy[3], d1[3];
-            biref_render_camera_ray_at(&r->cam, fx, fy, dir);
-            if (r->prefilter) {
-                biref_render_camera_ray_at(&r->cam, fx + h, fy, d1);
-                v3_sub(d1, dir, dx);
-                biref_render_camera_ray_at(&r->cam, fx, fy + h, d1);
-                v3_sub(d1, dir, dy);
-            }
-            hit |= biref_render_shade_pixel(r, dir, r->prefilter ? dx : NULL, r->prefilter ? dy : NULL, c, &fb);
-            *fallback += fb;
-            for (int k = 0; k < 3; k++) xyz[k] += c[k];
+    double acc[RENDER_TILE][3] = {{0}};
+    int hit[RENDER_TILE] = {0};
+    tile->h = h;
+    for (int done = 0, total = np * KK; done < total; done += tile->n) {
+        tile->n = total - done < RENDER_TILE ? total - done : RENDER_TILE;
+        for (int j = 0; j < tile->n; j++) {
+            const int q = done + j, x = x0 + q / KK, s = q % KK;
+            tile->fx[j] = x + (K == 1 ? 0.5 : (s % K + jitter(x, y, s, 0x9e3779b9u)) * h);
+            tile->fy[j] = y + (K == 1 ? 0.5 : (s / K + jitter(x, y, s, 0x7f4a7c15u)) * h);
         }
-    for (int k = 0; k < 3; k++) xyz[k] /= (double)(K * K);
-    return hit;
-}
-
-/* One pixel's colour into the float image; a value that is not finite or beyond float range is
- * stored as 0 and counted. */
-static void store_pixel(const biref_renderer *r, const double c[3], float *px, long *nonfinite)
-{
-    for (int i = 0; i < 3; i++) {
-        double v = c[i] * r->exposure;
-        /* Validated scenes keep v far inside float range; anything else is reported. */
-        const int ok = isfinite(v) && fabs(v) <= FLT_MAX;
-        *nonfinite += !ok;
-        px[i] = (float)(ok ? v : 0.0);
+        biref_render_tile(r, tile, counts);
+        for (int j = 0; j < tile->n; j++) {
+            const int p = (done + j) / KK;
+            for (int c = 0; c < 3; c++) acc[p][c] += tile->xyz[c][j];
+            hit[p] |= tile->slab[j] >= 0.0;
+        }
+    }
+    /* The colours into the float image; a value that is not finite or beyond float range is
+     * stored as 0 and counted. */
+    const double e = r->exposure;
+    for (int p = 0; p < np; p++) {
+        counts->slab_pixels += hit[p];
+        for (int c = 0; c < 3; c++) {
+            const double v = acc[p][c] / (double)KK * e;
+            const int ok = fabs(v) <= FLT_MAX; /* false for infinities and NaN */
+            counts->nonfinite += !ok;
+            row[3 * (size_t)(x0 + p) + c] = (float)(ok ? v : 0.0);
+        }
     }
 }
 
-/* A row of one sample per pixel, in tiles (render_tile.c): each pixel's
- * colour is biref_render_shade_pixel's and depends only on the pixel, not on the tiling. */
-static void render_row_tiles(const biref_renderer *r, int y, float *row, render_tile_counts *counts)
+/* A row in groups of pixels whose samples fill a tile (one pixel at a time when its samples need
+ * more than one). */
+static void render_row(const biref_renderer *r, int y, float *row, render_tile_counts *counts)
 {
+    const int KK = r->opt.supersample * r->opt.supersample;
+    const int group = KK <= RENDER_TILE ? RENDER_TILE / KK : 1;
     render_tile tile;
-    for (int x0 = 0; x0 < r->cam.width; x0 += RENDER_TILE) {
-        const int n = r->cam.width - x0 < RENDER_TILE ? r->cam.width - x0 : RENDER_TILE;
-        biref_render_tile(r, &tile, x0, y, n, row, counts);
-    }
-}
-
-/* A row pixel by pixel: supersampling, the prefilter's footprints, world-fixed polarizers. */
-static void render_row_samples(const biref_renderer *r, int y, float *row, long *slab_pixels, long *fallbacks,
-                               long *nonfinite)
-{
-    for (int x = 0; x < r->cam.width; x++) {
-        double dir[3], c[3];
-        int fb;
-        if (r->opt.supersample == 1 && !r->prefilter) {
-            biref_render_camera_ray(&r->cam, x, y, dir);
-            *slab_pixels += biref_render_shade_pixel(r, dir, NULL, NULL, c, &fb);
-        } else {
-            *slab_pixels += sample_pixel(r, x, y, c, &fb);
-        }
-        *fallbacks += fb;
-        store_pixel(r, c, row + 3 * x, nonfinite);
-    }
+    for (int x0 = 0; x0 < r->cam.width; x0 += group)
+        render_pixels(r, &tile, x0, r->cam.width - x0 < group ? r->cam.width - x0 : group, y, row, counts);
 }
 
 biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_end, int y_step, float *xyz,
@@ -226,9 +221,6 @@ biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_e
     const int rows = (y_end - y_begin + y_step - 1) / y_step;
     const int threads = r->opt.threads > 0 ? r->opt.threads : omp_get_max_threads();
     long slab_pixels = 0, fallbacks = 0, nonfinite = 0;
-    /* One sample per pixel and the paper's light: tiles of pixels in lanes, the slab hits in the
-     * integrator's packets (the analytic method's SIMD kernel, point or prefiltered look-ups). */
-    const int packets = r->opt.supersample == 1 && !r->shader->world_fixed;
     int done = 0;
     /* Rows are independent and every pixel is computed the same way on any thread, so the
      * image does not depend on the thread count; dynamic scheduling balances rows that miss
@@ -237,14 +229,11 @@ biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_e
     for (int k = 0; k < rows; k++) {
         const int y = y_begin + k * y_step;
         float *row = xyz + (size_t)y * W * 3;
-        if (packets) {
-            render_tile_counts c = {0, 0, 0};
-            render_row_tiles(r, y, row, &c);
-            slab_pixels += c.slab_pixels;
-            fallbacks += c.fallbacks;
-            nonfinite += c.nonfinite;
-        } else
-            render_row_samples(r, y, row, &slab_pixels, &fallbacks, &nonfinite);
+        render_tile_counts c = {0, 0, 0};
+        render_row(r, y, row, &c);
+        slab_pixels += c.slab_pixels;
+        fallbacks += c.fallbacks;
+        nonfinite += c.nonfinite;
         if (progress) {
 #pragma omp critical(biref_render_progress)
             {

@@ -61,39 +61,10 @@ struct biref_renderer {
 
 /* camera.c */
 void biref_render_camera_init(render_camera *c, const biref_camera *cam);
-/* Unit direction through the centre of pixel (x, y), y = 0 at the top. */
-void biref_render_camera_ray(const render_camera *c, int x, int y, double dir[3]);
-/* Unit direction through the image point (fx, fy) in pixels (pixel (x, y) spans [x, x + 1) x [y, y + 1)). */
-void biref_render_camera_ray_at(const render_camera *c, double fx, double fy, double dir[3]);
 
-/* shade.c */
-void biref_render_env_init(render_env *e, const biref_environment *env);
-/* Radiance (XYZ) arriving along the ray from `from` in direction dir: the nearest panel in
- * front of `from`, else the environment. */
-void biref_render_radiance(const biref_renderer *r, const double from[3], const double dir[3], double xyz[3]);
-/* The whole pixel: nearest slab hit, transmission and reflection, or the filtered
- * background. Returns 1 if a slab was hit, and sets *fallback when a slab evaluation
- * failed and the fallback was used. dx, dy: the steps from dir to the neighbouring samples'
- * directions, for the prefilter's footprint (NULL: point phase integrals). */
-int biref_render_shade_pixel(const biref_renderer *r, const double dir[3], const double dx[3], const double dy[3],
-                             double xyz[3], int *fallback);
-/* One hit's transmission and reflection factors: the slab's (footprint fp, may be NULL) or the
- * stack's (docs/STACKS.md §5). */
-biref_status biref_render_eval(const biref_renderer *r, const render_slab *sl, const biref_hit_frames *fr,
-                               const biref_opl_footprint *fp, double T[3], double R[3]);
-/* The nearest slab along the camera ray dir (NULL: none), its distance in *t. */
-const render_slab *biref_render_nearest_slab(const biref_renderer *r, const double dir[3], double *t);
-/* A pixel that hits no slab: the background through the filter. */
-void biref_render_background(const biref_renderer *r, const double dir[3], double xyz[3]);
-/* A slab pixel's colour at hit point hp from the slab's transmission and reflection factors. */
-void biref_render_hit_colour(const biref_renderer *r, const double hp[3], const double dir[3],
-                             const biref_hit_frames *fr, const double tT[3], const double tR[3], double xyz[3]);
-
-/* footprint.c: the change of each leg type's optical path between the ray dir and the rays
- * dir + dx, dir + dy (the neighbouring samples) on the slab sl, in its transmission frame. */
-void biref_render_footprint(const biref_renderer *r, const render_slab *sl, const double dir[3], const double dx[3],
-                            const double dy[3], biref_opl_footprint *fp);
-/* The same from the neighbouring samples' unit rays dir_x (right) and dir_y (below). */
+/* footprint.c: the change of each leg type's optical path between the unit ray dir and the unit
+ * rays dir_x (right) and dir_y (below) of the neighbouring samples on the slab sl, in its
+ * transmission frame (the per-ray form of footprint_legs.h, whose body the tiles share). */
 void biref_render_footprint_rays(const biref_renderer *r, const render_slab *sl, const double dir[3],
                                  const double dir_x[3], const double dir_y[3], biref_opl_footprint *fp);
 

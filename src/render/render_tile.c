@@ -8,12 +8,11 @@ int biref_render_tile_isa(void)
     return isa == BIREF_SIMD_SCALAR ? BIREF_SIMD_BASELINE : isa;
 }
 
-void biref_render_tile(const biref_renderer *r, render_tile *tile, int x0, int y, int n, float *row,
-                       render_tile_counts *counts)
+void biref_render_tile(const biref_renderer *r, render_tile *tile, render_tile_counts *counts)
 {
     switch (r->tile_isa) {
-    case BIREF_SIMD_AVX512: biref_render_tile_avx512(r, tile, x0, y, n, row, counts); break;
-    case BIREF_SIMD_AVX2: biref_render_tile_avx2(r, tile, x0, y, n, row, counts); break;
-    default: biref_render_tile_baseline(r, tile, x0, y, n, row, counts); break;
+    case BIREF_SIMD_AVX512: biref_render_tile_avx512(r, tile, counts); break;
+    case BIREF_SIMD_AVX2: biref_render_tile_avx2(r, tile, counts); break;
+    default: biref_render_tile_baseline(r, tile, counts); break;
     }
 }

@@ -1,8 +1,10 @@
-/* The paper's frames of a view ray at a slab hit (docs/SCENES.md "Frames"). */
+/* The paper's frames of a view ray at a slab hit (docs/SCENES.md "Frames"), from the one inline
+ * body the renderer's tiles share (ray_frame.h). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "shading/ray_frame.h"
 #include "shading/shader_internal.h"
 #include "shading/vec3.h"
 
@@ -11,24 +13,21 @@
 void biref_shading_frames(const double normal[3], const double tangent[3], const double axis_world[3],
                           const biref_slab *base, const double dir[3], biref_hit_frames *f)
 {
-    double dn = v3_dot(dir, normal);
-    f->theta = acos(fmin(1.0, fabs(dn)));
-    if (f->theta > THETA_MAX) f->theta = THETA_MAX;
     /* Transmission: y = normal pointing away from the viewer (towards the light behind), z = the
      * view ray's tangential part, x = y x z. The reflection frame has y towards the viewer and the
      * same z, hence x_R = -x_T: the same slab lit from its other face. */
-    v3_scale(normal, dn < 0 ? -1.0 : 1.0, f->y_T);
-    v3_axpy(dir, -dn, normal, f->z);
-    if (v3_normalize(f->z, f->z) < 1e-9) memcpy(f->z, tangent, sizeof f->z);
-    v3_cross(f->y_T, f->z, f->x_T);
+    biref_ray_frame rf;
+    biref_ray_frame_of(normal, tangent, axis_world, dir, cos(THETA_MAX), &rf);
+    f->theta = acos(rf.c);
+    memcpy(f->x_T, rf.x, sizeof f->x_T);
+    memcpy(f->y_T, rf.y, sizeof f->y_T);
+    memcpy(f->z, rf.z, sizeof f->z);
+    memcpy(f->mirror, rf.mirror, sizeof f->mirror);
     v3_scale(f->x_T, -1.0, f->x_R);
     v3_scale(f->y_T, -1.0, f->y_R);
     v3_scale(dir, -1.0, f->k_view); /* light reaching the eye travels against the view ray */
-    v3_axpy(dir, -2.0 * dn, normal, f->mirror);
     f->slab = *base;
-    f->slab.axis[0] = v3_dot(axis_world, f->x_T);
-    f->slab.axis[1] = v3_dot(axis_world, f->y_T);
-    f->slab.axis[2] = v3_dot(axis_world, f->z);
+    memcpy(f->slab.axis, rf.axis, sizeof f->slab.axis);
 }
 
 static int finite3(const double v[3]) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }

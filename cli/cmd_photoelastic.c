@@ -34,10 +34,15 @@ static int mono_tint(double lambda, double tint[3])
     return 0;
 }
 
-static cJSON *material_json(const biref_pe_material *m, double lambda_for_f)
+static cJSON *material_json(const pe_args *a, const biref_pe_material *m, double lambda_for_f)
 {
     cJSON *o = cJSON_CreateObject();
     cJSON_AddStringToObject(o, "name", m->name);
+    cJSON_AddBoolToObject(o, "default", !a->material_given && !strcmp(m->name, "polycarbonate"));
+    if (!isnan(a->fringe_value)) {
+        cJSON_AddNumberToObject(o, "fringe_value_N_per_mm", a->fringe_value);
+        cJSON_AddNumberToObject(o, "fringe_value_lambda_nm", a->fringe_value_nm);
+    }
     cJSON_AddNumberToObject(o, "n0", m->n0);
     cJSON_AddNumberToObject(o, "C_brewster", m->C_per_Pa / BIREF_BREWSTER);
     cJSON_AddNumberToObject(o, "fringe_constant_N_per_m", biref_pe_fringe_constant(m, lambda_for_f));
@@ -58,18 +63,51 @@ typedef struct {
     cJSON *root;
 } pe_run;
 
-/* The material with --n0/--C-brewster applied. Returns a CLI exit code. */
+/* The material with --n0/--C-brewster/--fringe-value applied. Returns a CLI exit code. */
 static int make_material(const pe_args *a, biref_pe_material *m)
 {
     (void)biref_pe_material_preset(a->material_name, m);
-    if (!isnan(a->n0) || !isnan(a->c_brew)) {
+    if (!isnan(a->n0) || !isnan(a->c_brew) || !isnan(a->fringe_value)) {
         m->name = "custom";
-        m->source = "user";
+        m->source = !isnan(a->fringe_value) ? "--fringe-value" : "user";
         if (!isnan(a->n0)) m->n0 = a->n0;
         if (!isnan(a->c_brew)) m->C_per_Pa = a->c_brew * BIREF_BREWSTER;
+        /* f = lambda / C (N/m per fringe); F N/mm = 1e3 F N/m. */
+        if (!isnan(a->fringe_value)) m->C_per_Pa = a->fringe_value_nm * 1e-9 / (a->fringe_value * 1e3);
     }
     char msg[256];
     if (biref_pe_material_check(m, msg, sizeof msg) != BIREF_OK) return cli_error(CMD, "material: %s", msg), CLI_EXIT_USAGE;
+    return CLI_EXIT_OK;
+}
+
+/* The material as one line: what was used and where it came from. */
+static void print_material(const pe_args *a, const biref_pe_material *m)
+{
+    const double lam = isnan(a->fringe_value_nm) ? 546.1 : a->fringe_value_nm;
+    const int dflt = !a->material_given && !strcmp(m->name, "polycarbonate");
+    printf("%smaterial: %s%s, n0 %.4g, C %.4g Br = fringe value %.4g N/mm at %g nm\n", a->have_profile ? "# " : "",
+           m->name, dflt ? " (the default; --material, --C-brewster or --fringe-value to change)" : "", m->n0,
+           m->C_per_Pa / BIREF_BREWSTER, biref_pe_fringe_constant(m, lam) * 1e-3, lam);
+}
+
+/* The picture's frame: the window, else the part with the margin; a window off the part is
+ * refused. Returns a CLI exit code. */
+static int make_frame(const pe_args *a, biref_pe_field *f)
+{
+    const double mm = 1e-3, *fr = f->frame;
+    if (a->have_view) {
+        if (a->view[1] * mm < fr[0] || a->view[0] * mm > fr[1] || a->view[3] * mm < fr[2] || a->view[2] * mm > fr[3])
+            return cli_error(CMD, "--window-mm: x %g..%g, y %g..%g does not overlap the part (x %g..%g, y %g..%g mm)",
+                             a->view[0], a->view[1], a->view[2], a->view[3], fr[0] / mm, fr[1] / mm, fr[2] / mm,
+                             fr[3] / mm),
+                   CLI_EXIT_USAGE;
+        for (int i = 0; i < 4; i++) f->frame[i] = a->view[i] * mm;
+        return CLI_EXIT_OK;
+    }
+    const int fe = a->kind == BIREF_PE_NODES;
+    const double pct = isnan(a->margin_pct) ? (fe ? 5.0 : 0.0) : a->margin_pct;
+    const double d = pct / 100.0 * fmax(fr[1] - fr[0], fr[3] - fr[2]);
+    f->frame[0] -= d, f->frame[1] += d, f->frame[2] -= d, f->frame[3] += d;
     return CLI_EXIT_OK;
 }
 
@@ -95,7 +133,11 @@ static int make_field(pe_args *a, pe_run *run)
         st = biref_pe_field_beam(&run->field, pe_geo_or(a, PE_LENGTH, 100.0) * mm, pe_geo_or(a, PE_DEPTH, 20.0) * mm, h,
                                  pe_geo_or(a, PE_MOMENT, 2000.0) * 1e-3, msg, sizeof msg);
         break;
-    case BIREF_PE_NODES: return pe_ext_nodes_field(&a->ext, &run->field, h);
+    case BIREF_PE_NODES: {
+        int rc = pe_ext_nodes_field(&a->ext, &run->field, h);
+        if (rc) return rc;
+        break;
+    }
     default:
         st = biref_pe_grid_load(a->grid_path, &run->grid, msg, sizeof msg);
         if (st != BIREF_OK) {
@@ -106,9 +148,7 @@ static int make_field(pe_args *a, pe_run *run)
         break;
     }
     if (st != BIREF_OK) return cli_error(CMD, "%s: %s", pe_kind_name(a->kind), msg), CLI_EXIT_USAGE;
-    if (a->have_view)
-        for (int i = 0; i < 4; i++) run->field.frame[i] = a->view[i] * mm;
-    return CLI_EXIT_OK;
+    return make_frame(a, &run->field);
 }
 
 /* Material, field, polariscope, picture size and spectral tables. Returns a CLI exit code. */
@@ -222,7 +262,7 @@ static void add_summary(const pe_args *a, const pe_run *run)
     cJSON *root = run->root;
     const double mm = 1e-3;
     cJSON_AddStringToObject(root, "specimen", pe_kind_name(a->kind));
-    cJSON_AddItemToObject(root, "material", material_json(&run->setup.material, run->lambda_N));
+    cJSON_AddItemToObject(root, "material", material_json(a, &run->setup.material, run->lambda_N));
     cJSON_AddNumberToObject(root, "thickness_mm", run->h / mm);
     cJSON_AddNumberToObject(root, "eta_i", a->eta_i);
     cJSON_AddStringToObject(root, "polariscope", a->pk == BIREF_PE_PLANE ? "plane" : "circular");
@@ -322,7 +362,12 @@ static void print_profile(const pe_args *a, const pe_run *run)
 
 int cmd_photoelastic(int argc, char **argv)
 {
-    if (argc > 1 && !strcmp(argv[1], "demodulate")) return cmd_photoelastic_demodulate(argc - 1, argv + 1);
+    if (argc > 1 && !strcmp(argv[1], "calibrate")) return cmd_photoelastic_calibrate(argc - 1, argv + 1);
+    if (argc > 1 && !strcmp(argv[1], "demodulate")) {
+        for (int i = 2; i < argc; i++)
+            if (!strcmp(argv[i], "--tfp") || !strncmp(argv[i], "--tfp=", 6)) return cmd_photoelastic_tfp(argc - 1, argv + 1);
+        return cmd_photoelastic_demodulate(argc - 1, argv + 1);
+    }
     pe_args a;
     int r = pe_args_parse(argc, argv, &a);
     if (r) return r > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
@@ -331,6 +376,7 @@ int cmd_photoelastic(int argc, char **argv)
     int rc = prepare(&a, &run);
     if (!rc && a.out) rc = write_output(&a, &run);
     if (!rc && run.root) add_summary(&a, &run);
+    if (!rc && !run.root) print_material(&a, &run.setup.material);
     if (!rc && a.have_profile) print_profile(&a, &run);
     if (!rc && run.root) {
         if (json_print_and_free(run.root)) rc = CLI_EXIT_FAIL;

@@ -30,11 +30,15 @@ enum { N_COMMANDS = sizeof commands / sizeof commands[0] };
 /* The option tables of docs/CLI.md, from the same tables that parse the options. */
 static void markdown(FILE *f)
 {
-    const cli_command_spec *specs[N_COMMANDS + 1];
+    const cli_command_spec *specs[N_COMMANDS + 3];
     size_t n = 0;
     for (size_t i = 0; i < N_COMMANDS; i++) {
         specs[n++] = commands[i].spec;
-        if (commands[i].spec == &CLI_PHOTOELASTIC) specs[n++] = &CLI_PHOTOELASTIC_DEMODULATE;
+        if (commands[i].spec == &CLI_PHOTOELASTIC) {
+            specs[n++] = &CLI_PHOTOELASTIC_DEMODULATE;
+            specs[n++] = &CLI_PHOTOELASTIC_TFP;
+            specs[n++] = &CLI_PHOTOELASTIC_CALIBRATE;
+        }
     }
     fprintf(f, "## Options of each command\n\n");
     for (size_t i = 0; i < n; i++) cli_opts_markdown(specs[i], f);

@@ -141,18 +141,23 @@ biref_status pe_png16_write_gray(const char *path, int width, int height, const 
     return temp_commit(&t, path, ok, msg, msg_len);
 }
 
+/* Opens a PNG with libpng's simplified API; BIREF_ERR_IO with the reason. */
+static biref_status begin_read(png_image *img, const char *path, char *msg, size_t msg_len)
+{
+    memset(img, 0, sizeof *img);
+    img->version = PNG_IMAGE_VERSION;
+    if (png_image_begin_read_from_file(img, path)) return BIREF_OK;
+    char why[128];
+    snprintf(why, sizeof why, "%s", img->message[0] ? img->message : strerror(errno));
+    png_image_free(img);
+    return fail(msg, msg_len, path, "cannot read", why);
+}
+
 biref_status pe_png_read_gray(const char *path, int *width, int *height, float **out, char *msg, size_t msg_len)
 {
     *out = NULL;
     png_image img;
-    memset(&img, 0, sizeof img);
-    img.version = PNG_IMAGE_VERSION;
-    if (!png_image_begin_read_from_file(&img, path)) {
-        char why[128];
-        snprintf(why, sizeof why, "%s", img.message[0] ? img.message : strerror(errno));
-        png_image_free(&img);
-        return fail(msg, msg_len, path, "cannot read", why);
-    }
+    if (begin_read(&img, path, msg, msg_len) != BIREF_OK) return BIREF_ERR_IO;
     img.format = PNG_FORMAT_LINEAR_Y;
     size_t n = (size_t)img.width * img.height;
     uint16_t *px = malloc(n * sizeof *px);
@@ -168,6 +173,34 @@ biref_status pe_png_read_gray(const char *path, int *width, int *height, float *
     *width = (int)img.width;
     *height = (int)img.height;
     *out = g;
+    return BIREF_OK;
+}
+
+biref_status pe_png_read_rgb(const char *path, int *width, int *height, float **out, int *bits, char *msg,
+                             size_t msg_len)
+{
+    *out = NULL;
+    png_image img;
+    if (begin_read(&img, path, msg, msg_len) != BIREF_OK) return BIREF_ERR_IO;
+    /* The stored values, unconverted: 8-bit files as they are (encoded), 16-bit files are linear to
+     * libpng and come back as stored. */
+    const int wide = (img.format & PNG_FORMAT_FLAG_LINEAR) != 0;
+    img.format = wide ? PNG_FORMAT_LINEAR_RGB : PNG_FORMAT_RGB;
+    const size_t n = (size_t)img.width * img.height * 3;
+    void *px = malloc(n * (wide ? 2 : 1));
+    float *v = malloc(n * sizeof *v);
+    if (!px || !v || !png_image_finish_read(&img, NULL, px, 0, NULL)) {
+        free(px);
+        free(v);
+        png_image_free(&img);
+        return fail(msg, msg_len, path, "cannot read", px && v ? "corrupt PNG" : "out of memory");
+    }
+    for (size_t i = 0; i < n; i++) v[i] = wide ? (float)(((uint16_t *)px)[i] / 65535.0) : (float)(((unsigned char *)px)[i] / 255.0);
+    free(px);
+    *width = (int)img.width;
+    *height = (int)img.height;
+    *bits = wide ? 16 : 8;
+    *out = v;
     return BIREF_OK;
 }
 

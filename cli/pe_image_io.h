@@ -17,6 +17,10 @@ biref_status pe_pfm_read_gray(const char *path, int *width, int *height, float *
 biref_status pe_png16_write_gray(const char *path, int width, int height, const float *v, char *msg, size_t msg_len);
 /* Any PNG as linear grey 0..1 (libpng's simplified API: 8-bit sRGB files are linearised). */
 biref_status pe_png_read_gray(const char *path, int *width, int *height, float **v, char *msg, size_t msg_len);
+/* Any PNG as RGB 0..1 with its stored values (8-bit: encoded as written, e.g. sRGB; 16-bit: as
+ * stored), 3 floats per pixel, top row first; *bits 8 or 16. */
+biref_status pe_png_read_rgb(const char *path, int *width, int *height, float **v, int *bits, char *msg,
+                             size_t msg_len);
 /* Reads .pfm or .png by extension. */
 biref_status pe_image_read_gray(const char *path, int *width, int *height, float **v, char *msg, size_t msg_len);
 

@@ -23,7 +23,8 @@ enum {
     OPT_PROFILE,
     OPT_WINDOW,
     OPT_VIEW,
-    OPT_ANTIALIAS
+    OPT_ANTIALIAS,
+    OPT_FRINGE_VALUE
 };
 
 /* Geometry options and the presets they belong to (bit 1 << kind; grid and nodes have none). */
@@ -104,6 +105,27 @@ static int handle_choice(pe_args *a, int code, const char *arg)
     }
 }
 
+/* --fringe-value F@L: the material fringe value F (N/mm per fringe) quoted at L nm. */
+static int parse_fringe_value(pe_args *a, const char *arg)
+{
+    const char *at = strchr(arg, '@');
+    char f[64];
+    if (!at || (size_t)(at - arg) >= sizeof f)
+        return cli_error(CMD, "--fringe-value: expected F@LAMBDA_NM, the fringe value in N/mm per fringe and the "
+                              "wavelength it is quoted at, e.g. 7.0@546.1; got '%s'", arg),
+               -1;
+    memcpy(f, arg, (size_t)(at - arg));
+    f[at - arg] = '\0';
+    if (cli_parse_double(CMD, "--fringe-value", f, &a->fringe_value) ||
+        cli_parse_double(CMD, "--fringe-value (wavelength)", at + 1, &a->fringe_value_nm))
+        return -1;
+    if (!(a->fringe_value > 0 && a->fringe_value <= 1e9))
+        return cli_error(CMD, "--fringe-value: must be positive and at most 1e9 N/mm, got %g", a->fringe_value), -1;
+    if (!(a->fringe_value_nm >= 200 && a->fringe_value_nm <= 2000))
+        return cli_error(CMD, "--fringe-value: the wavelength must be in [200, 2000] nm, got %g", a->fringe_value_nm), -1;
+    return 0;
+}
+
 static int handle(void *args, int code, const char *arg)
 {
     pe_args *a = args;
@@ -126,6 +148,7 @@ static int handle(void *args, int code, const char *arg)
         if (biref_pe_material_preset(arg, &m) != BIREF_OK)
             return cli_error(CMD, "--material: expected polycarbonate, epoxy, pmma or glass, got '%s'", arg), -1;
         a->material_name = arg;
+        a->material_given = 1;
         return 0;
     }
     case OPT_POLARIZER: return cli_parse_linear_polarizer(CMD, "--polarizer", arg, &a->polarizer_deg);
@@ -142,6 +165,7 @@ static int handle(void *args, int code, const char *arg)
         a->have_view = 1;
         return cli_parse_window(CMD, "--window-mm", arg, a->view);
     case OPT_ANTIALIAS: return cli_parse_antialias(CMD, arg, &a->prefilter);
+    case OPT_FRINGE_VALUE: return parse_fringe_value(a, arg);
     case OPT_VIEW:
         if (cli_parse_list(CMD, "--view-mm", arg, a->view, 4)) return -1;
         if (!(a->view[1] > a->view[0] && a->view[3] > a->view[2]))
@@ -176,8 +200,19 @@ static const cli_opt OPTS[] = {
                "node table with a header (finite-element nodes, scattered; Delaunay\n"
                "triangulation, linear in each triangle); other columns are ignored;\n"
                "comma, semicolon or blank separated; repeated nodes are averaged"),
+    CLI_CUSTOM("fea", "FILE", OPT_PE_FEA,
+               "finite-element results with their elements: CalculiX .frd (ASCII),\n"
+               "VTK .vtu/.vtp (XML, any encoding) or legacy .vtk; plane elements (linear\n"
+               "and quadratic triangles and quads), interpolated inside each element;\n"
+               "outside every element there is no material (holes need no boundary)"),
+    CLI_CUSTOM("fea-format", "frd|vtu|vtk", OPT_PE_FEA_FORMAT, "the format of --fea (default: from the extension)"),
+    CLI_CUSTOM("fea-stress", "NAME", OPT_PE_FEA_STRESS,
+               "VTK: the point-data stress tensor (3, 6 or 9 components; default the\n"
+               "first of stress, S, sigma, then scalars stress_xx/_yy/_xy, sxx/syy/sxy,\n"
+               "S11/S22/S12); .frd: components SXX, SYY, SXY unless --columns"),
     CLI_CUSTOM("columns", "x=X,y=Y,sxx=S11,syy=S22,txy=S12", OPT_PE_COLUMNS,
-               "column names of the nodes (default x, y, sxx, syy, txy)"),
+               "column names of the nodes (default x, y, sxx, syy, txy); with --fea\n"
+               "the three stress components' names (arrays, or .frd components)"),
     CLI_CUSTOM("length-unit", "mm|m", OPT_PE_LENGTH_UNIT, "unit of the nodes' coordinates (default mm)"),
     CLI_CUSTOM("stress-unit", "MPa|Pa", OPT_PE_STRESS_UNIT, "unit of the nodes' stresses (default MPa)"),
     CLI_CUSTOM("boundary", "FILE", OPT_PE_BOUNDARY,
@@ -190,6 +225,9 @@ static const cli_opt OPTS[] = {
     CLI_CUSTOM("material", "M", OPT_MATERIAL, "polycarbonate (default), epoxy, pmma, glass"),
     CLI_DOUBLE("n0", "N", F(n0), 0, 0, "override the index of the unstressed material"),
     CLI_DOUBLE("C-brewster", "C", F(c_brew), 0, 0, "override the stress-optic coefficient (1 Brewster = 1e-12 /Pa)"),
+    CLI_CUSTOM("fringe-value", "F@L", OPT_FRINGE_VALUE,
+               "the material fringe value instead: F N/mm per fringe, as quoted at\n"
+               "L nm (e.g. 7.0@546.1); C = L / F"),
     CLI_DOUBLE("eta-i", "N", F(eta_i), 1, 5, "index around the plate (default 1; n0 = index-matched immersion)"),
     CLI_TEXT("\nPolariscope and light:\n"),
     CLI_CUSTOM("polariscope", "P", OPT_POLARISCOPE, "plane or circular (default circular)"),
@@ -206,6 +244,9 @@ static const cli_opt OPTS[] = {
     CLI_CUSTOM("window-mm", "x0,y0,x1,y1", OPT_WINDOW,
                "show the window with opposite corners (x0, y0) and (x1, y1) of\n"
                "the plate instead of the whole part"),
+    CLI_DOUBLE("margin-pct", "P", F(margin_pct), 0, 100,
+               "space around the part, % of its larger side on each side (default 5\n"
+               "for --stress-nodes and --fea; presets and grids: their own frame)"),
     CLI_DOUBLE("tilt-deg", "A", F(tilt_deg), 0, 80,
                "view the plate A degrees off its normal (turned about its x axis;\n"
                "0-80, default 0). Uses the general slab path (about 15x slower) and\n"
@@ -251,7 +292,8 @@ static const cli_opt OPTS[] = {
 
 const cli_command_spec CLI_PHOTOELASTIC = {
     "photoelastic",
-    "usage: biref photoelastic (--preset disk|hole|beam | --stress-grid FILE | --stress-nodes FILE) [OPTIONS]\n"
+    "usage: biref photoelastic (--preset disk|hole|beam | --stress-grid FILE | --stress-nodes FILE | --fea FILE)\n"
+    "                          [OPTIONS]\n"
     "       biref photoelastic demodulate IMAGES... -o DIR --zero-order PX,PY (see its --help)\n\n"
     "A plate under plane stress seen in a polariscope (at normal incidence unless --tilt-deg):\n"
     "isochromatic fringes (and isoclinics in a plane polariscope) from the stress-optic law\n"
@@ -276,7 +318,7 @@ static void defaults(pe_args *a)
     memset(a, 0, sizeof *a);
     a->kind = -1;
     a->material_name = "polycarbonate";
-    a->thickness_mm = a->n0 = a->c_brew = NAN;
+    a->thickness_mm = a->n0 = a->c_brew = a->fringe_value = a->fringe_value_nm = a->margin_pct = NAN;
     a->eta_i = 1.0;
     a->lambda = 589.0;
     a->exposure = 1.0;
@@ -296,15 +338,19 @@ static int check(pe_args *a, const cli_parsed *p, char **argv)
 {
     const int mono = a->light == BIREF_PE_MONO;
     if (pe_ext_check(&a->ext, a->kind >= 0, mono, a->out != NULL, a->tilt_deg > 0)) return -1;
-    if (a->ext.nodes_path) a->kind = BIREF_PE_NODES;
+    if (a->ext.nodes_path || a->ext.fea_path) a->kind = BIREF_PE_NODES;
     if (p->n_args > 0) return cli_error(CMD, "unexpected argument '%s'", argv[p->first_arg]), -1;
-    if (a->kind < 0) return cli_error(CMD, "missing --preset disk|hole|beam, --stress-grid FILE or --stress-nodes FILE"), -1;
+    if (a->kind < 0) return cli_error(CMD, "missing --preset disk|hole|beam, --stress-grid FILE, --stress-nodes FILE or --fea FILE"), -1;
     for (int i = 0; i < PE_N_GEO; i++)
         if (!isnan(a->geo[i]) && !(GEO[i].presets & (1u << a->kind)))
             return cli_error(CMD, "%s does not apply to %s", GEO[i].name,
                              a->kind >= BIREF_PE_GRID ? (a->kind == BIREF_PE_GRID ? "--stress-grid" : "--stress-nodes")
                                                       : pe_kind_name(a->kind)),
                    -1;
+    if (!isnan(a->fringe_value) && !isnan(a->c_brew))
+        return cli_error(CMD, "give one of --C-brewster and --fringe-value (both set the stress-optic coefficient)"), -1;
+    if (!isnan(a->margin_pct) && a->have_view)
+        return cli_error(CMD, "give one of --margin-pct and --window-mm (the window sets the frame)"), -1;
     if (!a->out && !a->have_profile) return cli_error(CMD, "nothing to do: give -o OUT.png and/or --profile"), -1;
     if (a->tint && !mono) return cli_error(CMD, "--tint needs --light mono"), -1;
     if (cli_opts_given(&CLI_PHOTOELASTIC, p, "lambda-nm") && !mono)

@@ -14,9 +14,11 @@ enum { PE_RADIUS, PE_LOAD, PE_STRESS, PE_WIDTH, PE_HEIGHT, PE_LENGTH, PE_DEPTH, 
 typedef struct {
     int kind; /* biref_pe_field_kind, or -1 before parsing */
     const char *grid_path, *out, *material_name;
-    int json, tint, have_profile, have_view, have_lambda;
+    int json, tint, have_profile, have_view, have_lambda, material_given;
     int prefilter; /* 1: fringes averaged over each sample's footprint (--antialias prefilter) */
     double thickness_mm, n0, c_brew; /* NAN: not given */
+    double fringe_value, fringe_value_nm; /* --fringe-value F@L (N/mm per fringe at L nm); NAN: not given */
+    double margin_pct; /* --margin-pct; NAN: not given (5 % for finite-element sources, else the part's frame) */
     double eta_i, polarizer_deg, lambda, exposure, tilt_deg;
     double geo[PE_N_GEO]; /* NAN: not given */
     double profile[4], view[4]; /* view: xmin, xmax, ymin, ymax */

@@ -18,11 +18,17 @@ enum {
     OPT_PE_PHASE_STEPS,
     OPT_PE_KEY,
     OPT_PE_SCALE_BAR,
-    OPT_PE_FORMAT
+    OPT_PE_FORMAT,
+    OPT_PE_FEA,
+    OPT_PE_FEA_FORMAT,
+    OPT_PE_FEA_STRESS
 };
 
 typedef struct {
     const char *nodes_path, *boundary_path;
+    const char *fea_path, *fea_tensor; /* --fea FILE, --fea-stress NAME */
+    int fea_format;                    /* PE_FEA_*: from --fea-format or the extension */
+    char fea_used[96];                 /* the stress arrays or components read */
     biref_pe_node_format fmt;
     char names[5][64];
     int have_columns, have_units;
@@ -32,6 +38,8 @@ typedef struct {
     int key, scale_bar;
     biref_pe_mesh *mesh;
 } pe_ext;
+
+enum { PE_FEA_AUTO, PE_FEA_FRD, PE_FEA_VTU, PE_FEA_VTK };
 
 /* Everything the extra outputs need from the command. */
 typedef struct {
@@ -67,5 +75,8 @@ int pe_ext_write_png(const pe_ext *e, const pe_ext_ctx *c, const unsigned char *
 void pe_ext_json(const pe_ext *e, cJSON *root);
 
 int cmd_photoelastic_demodulate(int argc, char **argv);
+/* biref photoelastic calibrate; biref photoelastic demodulate --tfp (photoelastic_tfp.c). */
+int cmd_photoelastic_calibrate(int argc, char **argv);
+int cmd_photoelastic_tfp(int argc, char **argv);
 
 #endif

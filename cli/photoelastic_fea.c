@@ -4,7 +4,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
+#include "fea_vtk.h"
 #include "photoelastic_ext.h"
 
 static const char *const CMD = "photoelastic";
@@ -51,6 +53,12 @@ int pe_ext_option(pe_ext *e, int code, const char *arg)
 {
     switch (code) {
     case OPT_PE_NODES: e->nodes_path = arg; return 1;
+    case OPT_PE_FEA: e->fea_path = arg; return 1;
+    case OPT_PE_FEA_STRESS: e->fea_tensor = arg; return 1;
+    case OPT_PE_FEA_FORMAT:
+        e->fea_format = !strcmp(arg, "frd") ? PE_FEA_FRD : !strcmp(arg, "vtu") ? PE_FEA_VTU : !strcmp(arg, "vtk") ? PE_FEA_VTK : -1;
+        if (e->fea_format < 0) return cli_error(CMD, "--fea-format: expected frd, vtu or vtk, got '%s'", arg), -1;
+        return 1;
     case OPT_PE_BOUNDARY: e->boundary_path = arg; return 1;
     case OPT_PE_COLUMNS: return parse_columns(e, arg) ? -1 : 1;
     case OPT_PE_LENGTH_UNIT:
@@ -97,11 +105,16 @@ int pe_ext_option(pe_ext *e, int code, const char *arg)
 
 int pe_ext_check(const pe_ext *e, int have_kind, int mono, int have_out, int have_tilt)
 {
-    if (e->nodes_path && have_kind) return cli_error(CMD, "give one of --preset, --stress-grid or --stress-nodes"), -1;
-    if (!e->nodes_path && (e->have_columns || e->have_units || e->boundary_path))
-        return cli_error(CMD, "%s needs --stress-nodes",
+    if ((e->nodes_path || e->fea_path) && (have_kind || (e->nodes_path && e->fea_path)))
+        return cli_error(CMD, "give one of --preset, --stress-grid, --stress-nodes or --fea"), -1;
+    if (!e->nodes_path && !e->fea_path && (e->have_columns || e->have_units || e->boundary_path))
+        return cli_error(CMD, "%s needs --stress-nodes or --fea",
                          e->have_columns ? "--columns" : e->boundary_path ? "--boundary" : "--length-unit/--stress-unit"),
                -1;
+    if (!e->fea_path && (e->fea_tensor || e->fea_format))
+        return cli_error(CMD, "%s needs --fea", e->fea_tensor ? "--fea-stress" : "--fea-format"), -1;
+    if (e->fea_tensor && e->have_columns)
+        return cli_error(CMD, "give one of --fea-stress (a tensor array) and --columns (three components)"), -1;
     const int outputs = (e->map >= 0) + e->pfm + (e->phase_steps > 0);
     if (outputs > 1) return cli_error(CMD, "give at most one of --map, --format pfm and --phase-steps"), -1;
     if (outputs && !have_out) return cli_error(CMD, "--map, --format pfm and --phase-steps write to -o FILE"), -1;
@@ -114,10 +127,44 @@ int pe_ext_check(const pe_ext *e, int have_kind, int mono, int have_out, int hav
     return 0;
 }
 
+/* The format of --fea: as given, else from the extension. */
+static int fea_format(const pe_ext *e)
+{
+    if (e->fea_format) return e->fea_format;
+    const char *dot = strrchr(e->fea_path, '.');
+    if (dot && !strcasecmp(dot, ".frd")) return PE_FEA_FRD;
+    if (dot && (!strcasecmp(dot, ".vtu") || !strcasecmp(dot, ".vtp"))) return PE_FEA_VTU;
+    if (dot && !strcasecmp(dot, ".vtk")) return PE_FEA_VTK;
+    return PE_FEA_AUTO;
+}
+
+/* A solver's result file with its elements. */
+static biref_status load_fea(pe_ext *e, char *msg, size_t msg_len)
+{
+    const int fmt = fea_format(e);
+    if (fmt == PE_FEA_AUTO)
+        return snprintf(msg, msg_len, "cannot tell the format from the extension (.frd, .vtu, .vtp, .vtk): give "
+                                      "--fea-format frd|vtu|vtk"),
+               BIREF_ERR_INVALID;
+    if (fmt == PE_FEA_FRD) {
+        biref_pe_frd_format f;
+        biref_pe_frd_format_default(&f);
+        if (e->have_columns) f.sxx = e->fmt.sxx, f.syy = e->fmt.syy, f.txy = e->fmt.txy;
+        f.length_m = e->fmt.length_m;
+        f.stress_pa = e->fmt.stress_pa;
+        snprintf(e->fea_used, sizeof e->fea_used, "%.28s, %.28s, %.28s", f.sxx, f.syy, f.txy);
+        return biref_pe_frd_load(e->fea_path, &f, &e->mesh, msg, msg_len);
+    }
+    pe_vtk_request rq = {e->fea_tensor, {NULL, NULL, NULL}, e->fmt.length_m, e->fmt.stress_pa};
+    if (e->have_columns) rq.comp[0] = e->fmt.sxx, rq.comp[1] = e->fmt.syy, rq.comp[2] = e->fmt.txy;
+    return pe_vtk_load(e->fea_path, fmt == PE_FEA_VTK, &rq, &e->mesh, e->fea_used, msg, msg_len);
+}
+
 int pe_ext_nodes_field(pe_ext *e, biref_pe_field *f, double h)
 {
     char msg[512];
-    biref_status st = biref_pe_mesh_load(e->nodes_path, &e->fmt, &e->mesh, msg, sizeof msg);
+    const char *src = e->fea_path ? e->fea_path : e->nodes_path;
+    biref_status st = e->fea_path ? load_fea(e, msg, sizeof msg) : biref_pe_mesh_load(e->nodes_path, &e->fmt, &e->mesh, msg, sizeof msg);
     if (st == BIREF_OK && e->boundary_path) {
         st = biref_pe_mesh_boundary_load(e->mesh, e->boundary_path, e->fmt.length_m, msg, sizeof msg);
         if (st != BIREF_OK) {
@@ -126,8 +173,19 @@ int pe_ext_nodes_field(pe_ext *e, biref_pe_field *f, double h)
         }
     }
     if (st != BIREF_OK) {
-        cli_error(CMD, "%s: %s", e->nodes_path, msg);
+        cli_error(CMD, "%s: %s", src, msg);
         return st == BIREF_ERR_NOMEM ? CLI_EXIT_FAIL : CLI_EXIT_USAGE;
+    }
+    if (e->boundary_path && biref_pe_mesh_nodes_inside(e->mesh, NULL) == 0) {
+        biref_pe_mesh_info info;
+        double b[4];
+        biref_pe_mesh_get_info(e->mesh, &info);
+        biref_pe_mesh_bounds(e->mesh, b);
+        const double u = e->fmt.length_m;
+        cli_error(CMD, "%s: the boundary encloses none of the %zu nodes (x %g..%g, y %g..%g in the nodes' unit): another "
+                       "length unit, or another part's outline?",
+                  e->boundary_path, info.nodes, b[0] / u, b[1] / u, b[2] / u, b[3] / u);
+        return CLI_EXIT_USAGE;
     }
     if (biref_pe_field_nodes(f, e->mesh, h, msg, sizeof msg) != BIREF_OK) {
         cli_error(CMD, "nodes: %s", msg);
@@ -141,9 +199,22 @@ void pe_ext_json(const pe_ext *e, cJSON *root)
     if (!root || !e->mesh) return;
     biref_pe_mesh_info info;
     biref_pe_mesh_get_info(e->mesh, &info);
-    cJSON *o = cJSON_AddObjectToObject(root, "nodes");
-    cJSON_AddNumberToObject(o, "rows", (double)info.rows);
-    cJSON_AddNumberToObject(o, "distinct", (double)info.nodes);
-    cJSON_AddNumberToObject(o, "triangles", (double)info.triangles);
+    cJSON *o = cJSON_AddObjectToObject(root, e->fea_path ? "fea" : "nodes");
+    if (e->fea_path) {
+        static const char *const fmts[] = {"?", "frd", "vtu", "vtk"};
+        static const char *const types[BIREF_PE_ELEMENT_TYPES] = {"tri3", "tri6", "quad4", "quad8", "quad9"};
+        cJSON_AddStringToObject(o, "file", e->fea_path);
+        cJSON_AddStringToObject(o, "format", fmts[fea_format(e)]);
+        cJSON_AddStringToObject(o, "stress", e->fea_used);
+        cJSON_AddNumberToObject(o, "nodes", (double)info.nodes);
+        cJSON_AddNumberToObject(o, "elements", (double)info.elements);
+        cJSON *t = cJSON_AddObjectToObject(o, "element_types");
+        for (int k = 0; k < BIREF_PE_ELEMENT_TYPES; k++)
+            if (info.by_type[k]) cJSON_AddNumberToObject(t, types[k], (double)info.by_type[k]);
+    } else {
+        cJSON_AddNumberToObject(o, "rows", (double)info.rows);
+        cJSON_AddNumberToObject(o, "distinct", (double)info.nodes);
+        cJSON_AddNumberToObject(o, "triangles", (double)info.triangles);
+    }
     cJSON_AddNumberToObject(o, "boundary_polygons", (double)info.loops);
 }

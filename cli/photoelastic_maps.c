@@ -57,12 +57,14 @@ static int write_map(const pe_ext *e, const pe_ext_ctx *c)
             }
             cJSON_AddNumberToObject(c->root, "no_material_pixels", (double)nan);
         } else {
-            printf("wrote %s: %s map (%s%s), %d x %d px, range %.6g .. %.6g, %zu pixels without material (NaN)\n",
-                   c->out, biref_pe_map_name(k), biref_pe_map_unit(k),
+            char range[96] = "no pixel has material";
+            if (nan < (size_t)W * H) snprintf(range, sizeof range, "range %.6g .. %.6g", lo, hi);
+            printf("wrote %s: %s map (%s%s), %d x %d px, %s, %zu pixels without material (NaN)\n", c->out,
+                   biref_pe_map_name(k), biref_pe_map_unit(k),
                    k == BIREF_PE_MAP_FRINGE_ORDER ? (c->setup->light == BIREF_PE_MONO ? ", at the light's wavelength"
                                                                                       : ", at 550 nm")
                                                   : "",
-                   W, H, lo, hi, nan);
+                   W, H, range, nan);
         }
     }
     free(v);

@@ -5,6 +5,9 @@ pkgs=(build-essential cmake pkg-config libpng-dev libcjson-dev liblapacke-dev li
       libblas-dev liblcms2-dev libcairo2-dev libplplot-dev
       plplot-driver-cairo libqhull-dev
       libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri)
+# Finite-element results: VTK's readers for .vtu/.vtk (biref photoelastic --fea); gmsh and
+# CalculiX regenerate the examples (examples/photoelastic/fea/make.sh); meshio for Python meshes.
+pkgs+=(libvtk9-dev gmsh calculix-ccx python3-meshio)
 # Python bindings and their tests, with Debian's own /usr/bin/python3.
 pkgs+=(python3-numpy python3-cffi python3-pytest python3-pip python3-setuptools)
 # The WebGL2 viewer's test: headless Chromium driven by /usr/bin/python3, the GLSL reference compiler.

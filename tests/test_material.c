@@ -463,6 +463,45 @@ static void test_closed_form_methods_match_dispersive_ground_truth(void)
     biref_spectral_destroy(sp);
 }
 
+/* A scene slab takes "material" in place of eta_o/eta_e; both, or an unknown name, are refused
+ * with the field's path; the renderer checks the material over its band and renders it. */
+static void test_scene_slab_takes_a_material(void)
+{
+    char text[2048];
+    const char *fmt = "{\"camera\": {\"position\": [0, 2, 2], \"look_at\": [0, 0, 0], \"up\": [0, 1, 0], "
+                      "\"fov_deg\": 40, \"width\": 8, \"height\": 6}, \"slabs\": [{\"center\": [0, 0, 0], "
+                      "\"size\": [2, 2], \"thickness_um\": 3, \"normal\": [0, 1, 0], \"tangent\": [1, 0, 0], "
+                      "\"axis\": [1, 0, 1], %s}], \"light\": {\"polarization\": {\"type\": \"sp\", \"s\": 1, "
+                      "\"p\": 0}}, \"filter\": {\"type\": \"p\"}}";
+    biref_scene sc;
+    char msg[BIREF_MSG_SIZE] = "";
+    snprintf(text, sizeof text, fmt, "\"material\": \"rutile\"");
+    CHECK(biref_scene_parse(text, strlen(text), &sc, msg, sizeof msg) == BIREF_OK);
+    CHECK(sc.slabs[0].material == biref_material_find("rutile"));
+    snprintf(text, sizeof text, fmt, "\"material\": \"rutile\", \"eta_e\": 2.9");
+    CHECK(biref_scene_parse(text, strlen(text), &sc, msg, sizeof msg) == BIREF_ERR_INVALID);
+    CHECK(strstr(msg, "slabs[0].material") != NULL);
+    snprintf(text, sizeof text, fmt, "\"material\": \"unobtainium\"");
+    CHECK(biref_scene_parse(text, strlen(text), &sc, msg, sizeof msg) == BIREF_ERR_INVALID);
+    CHECK(strstr(msg, "unknown material") != NULL);
+    snprintf(text, sizeof text, fmt, "\"material\": \"rutile\"");
+    CHECK(biref_scene_parse(text, strlen(text), &sc, msg, sizeof msg) == BIREF_OK);
+    biref_spectral *sp = NULL;
+    CHECK(biref_spectral_create(NULL, &sp, NULL, 0) == BIREF_OK);
+    biref_render_options o;
+    biref_render_options_default(&o);
+    o.threads = 1;
+    biref_renderer *r = NULL;
+    CHECK(biref_renderer_create(sp, &sc, &o, &r, msg, sizeof msg) == BIREF_OK);
+    float xyz[8 * 6 * 3];
+    if (r) CHECK(biref_renderer_render(r, 0, 6, 1, xyz, NULL, NULL, NULL) == BIREF_OK);
+    int finite = 1;
+    for (int i = 0; i < 8 * 6 * 3; i++) finite &= isfinite(xyz[i]) && xyz[i] >= 0;
+    CHECK(finite);
+    biref_renderer_destroy(r);
+    biref_spectral_destroy(sp);
+}
+
 int main(int argc, char **argv)
 {
     static const test_case cases[] = {
@@ -481,6 +520,7 @@ int main(int argc, char **argv)
          test_dispersive_numeric_matches_transfer_matrix_integral},
         {"flat_dispersion_limit", test_flat_dispersion_limit},
         {"integrator_takes_materials", test_integrator_takes_materials},
+        {"scene_slab_takes_a_material", test_scene_slab_takes_a_material},
         {"closed_form_methods_match_dispersive_ground_truth", test_closed_form_methods_match_dispersive_ground_truth},
     };
     return test_run_cases("test_material", cases, TEST_COUNT(cases), argc, argv);

@@ -154,7 +154,88 @@ static void malformed_files_give_one_line_errors(void)
     expect_error("x,y,sxx,syy,txy\n0,0,1,2,3\n1,0,1,2,3\n", "after 2 data rows");
     expect_error("x,y,sxx,syy,txy\n0,0,1,2,3\n1,1,1,2,3\n2,2,1,2,3\n3,3,1,2,3\n", "cannot triangulate");
     expect_error("x,y,x,syy,txy\n", "column x appears twice");
-    expect_error("x,y,sxx,syy,txy\n0,0,1e400,2,3\n", "line 2, column sxx: not a finite number");
+    expect_error("x,y,sxx,syy,txy\n0,0,1e400,2,3\n", "line 2, column sxx: 1e400 is out of range");
+    expect_error("x,y,sxx,syy,txy\n0,0,1e308,2,3\n", "line 2, column sxx: 1e308 is out of range (|stress| at most 1e+12 Pa)");
+    expect_error("x,y,sxx,syy,txy\n1e308,0,1,2,3\n", "line 2, column x: 1e308 is out of range");
+}
+
+/* A number written with 200 000 digits is still a number; a table beyond the node limit is
+ * refused from its row count, before the rows are stored. */
+static void long_numbers_read_and_row_limit_refused_early(void)
+{
+    const char *head = "x,y,sxx,syy,txy\n0,0,1,2,3\n1,0,1,2,3\n0,1,";
+    size_t nz = 200000, hl = strlen(head);
+    char *t = malloc(hl + nz + 16);
+    memcpy(t, head, hl);
+    memset(t + hl, '0', nz);
+    strcpy(t + hl + nz, ",2,3\n");
+    char msg[256] = "";
+    biref_pe_mesh *m = parse(t, NULL, msg);
+    CHECK(m != NULL);
+    if (!m) fprintf(stderr, "200 000-digit zero: %s\n", msg);
+    biref_pe_mesh_destroy(m);
+    free(t);
+    const size_t rows = 2000001;
+    t = malloc(16 + rows * 2 + 1);
+    strcpy(t, "x,y,sxx,syy,txy\n");
+    char *p = t + strlen(t);
+    for (size_t i = 0; i < rows; i++) *p++ = '1', *p++ = '\n';
+    *p = '\0';
+    m = parse(t, NULL, msg);
+    CHECK(m == NULL && strstr(msg, "more than 2000000 node rows") != NULL);
+    if (!strstr(msg, "more than 2000000 node rows")) fprintf(stderr, "row limit: %s\n", msg);
+    free(t);
+}
+
+/* The band index of the boundary answers as the plain even-odd count over every edge, on seeded
+ * random star polygons with holes and points on a lattice. */
+static int brute_inside(const double *xy, const size_t *start, size_t nl, double x, double y)
+{
+    int in = 0;
+    for (size_t l = 0; l < nl; l++)
+        for (size_t i = start[l], j = start[l + 1] - 1; i < start[l + 1]; j = i++) {
+            const double xi = xy[2 * i], yi = xy[2 * i + 1], xj = xy[2 * j], yj = xy[2 * j + 1];
+            if ((yi > y) != (yj > y) && x < xj + (y - yj) * (xi - xj) / (yi - yj)) in = !in;
+        }
+    return in;
+}
+
+static void boundary_index_agrees_with_every_edge_count(void)
+{
+    char msg[256];
+    biref_pe_mesh *m = parse("x,y,sxx,syy,txy\n-30,-30,1,0,0\n30,-30,1,0,0\n30,30,1,0,0\n-30,30,1,0,0\n", NULL, msg);
+    CHECK(m != NULL);
+    if (!m) return;
+    unsigned seed = 12345;
+    for (int trial = 0; trial < 6; trial++) {
+        const size_t nv[2] = {(size_t)(50 + trial * 400), (size_t)(7 + trial * 3)};
+        double xy[2 * 3000];
+        size_t start[3] = {0, nv[0], nv[0] + nv[1]};
+        char *text = malloc(64 * 3000), *p = text;
+        for (int l = 0; l < 2; l++) {
+            for (size_t i = 0; i < nv[l]; i++) {
+                seed = seed * 1103515245u + 12345u;
+                const double u = (seed >> 8) / 16777216.0, ang = 2 * M_PI * i / nv[l];
+                const double r = l == 0 ? 20 + 8 * u : 3 + 4 * u;
+                const double x = r * cos(ang) + (l ? 2 : 0), y = r * sin(ang);
+                xy[2 * (start[l] + i)] = x * 1e-3;
+                xy[2 * (start[l] + i) + 1] = y * 1e-3;
+                p += sprintf(p, "%.17g,%.17g\n", x, y);
+            }
+            p += sprintf(p, "\n");
+        }
+        CHECK(biref_pe_mesh_boundary_parse(m, text, strlen(text), 1e-3, msg, sizeof msg) == BIREF_OK);
+        free(text);
+        int bad = 0;
+        for (int i = 0; i < 121; i++)
+            for (int j = 0; j < 121; j++) {
+                const double x = (-30 + 0.5 * i + 0.013) * 1e-3, y = (-30 + 0.5 * j + 0.007) * 1e-3;
+                biref_pe_stress s;
+                bad += biref_pe_mesh_stress(m, x, y, &s) != brute_inside(xy, start, 2, x, y);
+            }
+        CHECK(bad == 0);
+    }
+    biref_pe_mesh_destroy(m);
 }
 
 static void mapped_column_is_named_with_its_role_in_errors(void)
@@ -177,6 +258,8 @@ int main(int argc, char **argv)
         {"default_units_are_mm_and_mpa_with_whitespace_separators", default_units_are_mm_and_mpa_with_whitespace_separators},
         {"malformed_files_give_one_line_errors", malformed_files_give_one_line_errors},
         {"mapped_column_is_named_with_its_role_in_errors", mapped_column_is_named_with_its_role_in_errors},
+        {"long_numbers_read_and_row_limit_refused_early", long_numbers_read_and_row_limit_refused_early},
+        {"boundary_index_agrees_with_every_edge_count", boundary_index_agrees_with_every_edge_count},
     };
     return test_run_cases("test_pe_nodes", cases, TEST_COUNT(cases), argc, argv);
 }

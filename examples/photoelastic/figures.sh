@@ -42,6 +42,13 @@ pe --stress-nodes "$here/disk_nodes.csv" --columns sxx=S11,syy=S22,txy=S12 --bou
   "${S[@]}" --light mono --lambda-nm 589 --key --scale-bar -o "$out/disk-nodes-589-key.png"
 pe --preset disk "${S[@]}" --key --scale-bar -o "$out/disk-circular-dark-white-key.png"
 
+# Finite-element results with their elements (examples/photoelastic/fea, solved with CalculiX): the
+# plate with a hole (CPS8, no boundary file: the hole is outside every element) and the disk (CPS6).
+pe --fea "$here/fea/plate_hole.vtu" --thickness-mm 3 "${S[@]}" --key --scale-bar -o "$out/plate-hole-fea-white-key.png"
+pe --fea "$here/fea/plate_hole.frd" --thickness-mm 3 "${S[@]}" --light mono --lambda-nm 589 --window-mm 2,-4,10,4 \
+  --scale-bar -o "$out/plate-hole-fea-589-zoom.png"
+pe --fea "$here/fea/disk.vtu" "${S[@]}" --light mono --lambda-nm 589 --key -o "$out/disk-fea-589-key.png"
+
 # Phase stepping: the six images of the disk at 589 nm (16-bit linear grey PNG).
 pe --preset disk --size 160 --light mono --lambda-nm 589 --phase-steps 6 -o "$out/disk-step.png"
 

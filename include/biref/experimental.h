@@ -104,6 +104,20 @@ BIREF_API biref_status biref_integrate_batch(const biref_integrator *it, const b
                                              biref_integration *out, biref_status *status);
 
 /* ------------------------------------------------------------------------- */
+/* The light model's per-ray resolution (polarization.h; a shader does this per hit) */
+/* ------------------------------------------------------------------------- */
+
+/* The light as one wave pair sees it: world-fixed parts resolved in the basis (s, p_in) of the
+ * incident wave and (s, p_out) of the outgoing wave (s shared, all unit world vectors, p = k x s).
+ * A light without world-fixed parts is copied unchanged. */
+BIREF_API void biref_light_at(const biref_light *l, const double s[3], const double p_in[3], const double p_out[3],
+                              biref_light *out);
+
+/* The intensity a light passes through its analyzer with no slab in between (a light without
+ * world-fixed parts, or one resolved by biref_light_at): sum C[i][j] P[i][k] conj(P[j][k]). */
+BIREF_API double biref_light_passthrough(const biref_light *l);
+
+/* ------------------------------------------------------------------------- */
 /* Dispersive materials (material.h) through a numeric plan                    */
 /* ------------------------------------------------------------------------- */
 

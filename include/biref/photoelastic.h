@@ -327,13 +327,66 @@ BIREF_API biref_status biref_pe_mesh_boundary_load(biref_pe_mesh *m, const char 
                                          size_t msg_len);
 BIREF_API void biref_pe_mesh_destroy(biref_pe_mesh *m);
 
+/* Finite elements of a solver's own mesh (biref_pe_mesh_from_elements, biref_pe_frd_parse). */
+typedef enum {
+    BIREF_PE_TRI3 = 0,  /* linear triangle (CPS3, VTK_TRIANGLE) */
+    BIREF_PE_TRI6 = 1,  /* quadratic triangle (CPS6, VTK_QUADRATIC_TRIANGLE) */
+    BIREF_PE_QUAD4 = 2, /* bilinear quadrilateral (CPS4, VTK_QUAD) */
+    BIREF_PE_QUAD8 = 3, /* serendipity quadrilateral (CPS8, VTK_QUADRATIC_QUAD) */
+    BIREF_PE_QUAD9 = 4  /* Lagrange quadrilateral (VTK_BIQUADRATIC_QUAD) */
+} biref_pe_element_type;
+#define BIREF_PE_ELEMENT_TYPES 5
+/* Nodes per element: 3, 6, 4, 8, 9 (0 for an unknown type). */
+BIREF_API int biref_pe_element_nodes(biref_pe_element_type t);
+
+/* A plane mesh with nodal stresses. Node order in each element as in VTK, CalculiX, Abaqus and
+ * gmsh: the corners in turn (either sense), then the mid-side nodes of edges 01, 12, 20 (quads:
+ * 01, 12, 23, 30), then the centre (QUAD9). Elements may have curved edges (mid-side nodes off the
+ * chord): the interpolation is isoparametric. */
 typedef struct {
-    size_t rows;       /* data rows read */
+    size_t nodes;
+    const double *xy;     /* [nodes][2], m */
+    const double *stress; /* [nodes][3]: sxx, syy, txy, Pa */
+    size_t elements;
+    const int *type;      /* [elements], biref_pe_element_type */
+    const size_t *conn;   /* the node indices (from 0) of each element in turn */
+} biref_pe_elements;
+/* Builds a mesh interpolated inside each element with its shape functions; points in no element
+ * have no material (holes and concave outlines need no boundary). The arrays are copied. One line
+ * in msg for an unknown type, an index beyond the nodes, an element without area, a non-finite or
+ * out-of-range value (coordinates beyond 1000 m, stresses beyond 1e12 Pa), more than 50 million
+ * nodes or elements. */
+BIREF_API biref_status biref_pe_mesh_from_elements(const biref_pe_elements *e, biref_pe_mesh **out, char *msg,
+                                                   size_t msg_len);
+
+/* Names of a CalculiX result file's stress components; units as in biref_pe_node_format. */
+typedef struct {
+    const char *sxx, *syy, *txy; /* components of the result block (default SXX, SYY, SXY) */
+    double length_m, stress_pa;
+} biref_pe_frd_format;
+/* SXX, SYY, SXY; millimetres; MPa. */
+BIREF_API void biref_pe_frd_format_default(biref_pe_frd_format *f);
+/* Parses a CalculiX .frd result file (ASCII; docs/PHOTOELASTICITY.md, "CalculiX"): its nodes, its
+ * plane elements (tr3, tr6, qu4, qu8) and the last result block holding the three named
+ * components (the last increment's nodal stresses). Refuses 3-D solid elements and nodes out of
+ * one z plane with one line saying what to export instead. */
+BIREF_API biref_status biref_pe_frd_parse(const char *text, size_t len, const biref_pe_frd_format *fmt,
+                                          biref_pe_mesh **out, char *msg, size_t msg_len);
+BIREF_API biref_status biref_pe_frd_load(const char *path, const biref_pe_frd_format *fmt, biref_pe_mesh **out,
+                                         char *msg, size_t msg_len);
+
+typedef struct {
+    size_t rows;       /* data rows read (elements: the nodes) */
     size_t nodes;      /* distinct positions */
-    size_t triangles;  /* non-degenerate Delaunay triangles */
+    size_t triangles;  /* non-degenerate Delaunay triangles (node tables; 0 for elements) */
+    size_t elements;   /* elements interpolated (Delaunay triangles or the solver's) */
+    size_t by_type[BIREF_PE_ELEMENT_TYPES]; /* elements of each biref_pe_element_type */
     size_t loops;      /* boundary polygons (0: none) */
     size_t loop_vertices;
 } biref_pe_mesh_info;
+/* Nodes inside window (xmin, xmax, ymin, ymax, m; NULL: anywhere) and inside the boundary if
+ * there is one: 0 means the boundary or the window misses the mesh. */
+BIREF_API size_t biref_pe_mesh_nodes_inside(const biref_pe_mesh *m, const double window[4]);
 BIREF_API void biref_pe_mesh_get_info(const biref_pe_mesh *m, biref_pe_mesh_info *out);
 /* Bounding box of the triangulation (xmin, xmax, ymin, ymax), m. */
 BIREF_API void biref_pe_mesh_bounds(const biref_pe_mesh *m, double b[4]);
@@ -413,6 +466,42 @@ BIREF_API biref_status biref_pe_demodulate(int n, const float *const images[], i
                                  const biref_pe_demod_opts *o, const biref_pe_demod_maps *out, char *msg,
                                  size_t msg_len);
 
+
+/* ------------------------------------------------------------------------ */
+/* Fringe orders from one white-light colour picture (TFP)                   */
+/* ------------------------------------------------------------------------ */
+
+/* A camera's spectral sensitivities: n wavelengths (nm, rising) and their R, G, B responses. */
+typedef struct {
+    size_t n;
+    const double *lambda_nm;
+    const double *rgb; /* [n][3] */
+} biref_pe_camera;
+
+/* The colour the camera records through polariscope s (its light is white, illuminant E) at each
+ * fringe order orders[k] (N at lambda_ref_nm, like the maps' white-light N): rgb[3k..3k+2]. cam
+ * NULL: an sRGB camera — biref's analytic white-light integration over the CIE 1931 observer and
+ * the encoded sRGB of the pictures (sp needed); else linear camera RGB, the intensity integrated
+ * over the sensitivities (trapezoids) and normalised to 1 for an unattenuated beam. */
+BIREF_API biref_status biref_pe_tfp_calibrate(const biref_pe_setup *s, const biref_spectral *sp,
+                                              const biref_pe_camera *cam, double lambda_ref_nm, size_t n,
+                                              const double *orders, double *rgb, char *msg, size_t msg_len);
+
+typedef struct {
+    int seed_x, seed_y;  /* the seed pixel (column, row from the top) */
+    double seed_order;   /* its known order, NAN: the best colour match over the whole table */
+    double window;       /* the largest change of order between neighbouring pixels (e.g. 0.3) */
+    double max_residual; /* RMS colour difference above which a pixel is left NaN (e.g. 0.08) */
+} biref_pe_tfp_opts;
+
+/* Fringe orders of a colour picture (rgb: W x H x 3 in the table's encoding, top row first) by
+ * colour matching against the calibration table (n rows, orders rising) with a continuity
+ * constraint: from the seed, each neighbour's order is searched within +-window of the order of
+ * the pixel it is reached from, best-matched pixels first. order_out (and residual_out if not
+ * NULL): W x H, NaN where no match within max_residual connects to the seed. */
+BIREF_API biref_status biref_pe_tfp_demodulate(const float *rgb, int W, int H, size_t n, const double *orders,
+                                               const double *table_rgb, const biref_pe_tfp_opts *o, float *order_out,
+                                               float *residual_out, char *msg, size_t msg_len);
 
 #ifdef __cplusplus
 }

@@ -7,7 +7,7 @@
  * of the incident wave for the coherency, of the outgoing wave for the analyzer
  * (docs/CONVENTIONS.md). A polarizer or analyzer may instead be fixed in the world (a linear
  * polarizer along a world axis, as in a scene): its matrix then differs from ray to ray, and a
- * shader (shading.h) resolves it for every hit (biref_light_at). Plain data, no allocation; see
+ * shader (shading.h) resolves it for every hit. Plain data, no allocation; see
  * integrator.h for how a light is used. */
 #ifndef BIREF_POLARIZATION_H
 #define BIREF_POLARIZATION_H
@@ -60,18 +60,8 @@ BIREF_API biref_status biref_light_world_polarizer(biref_light *l, const double 
  * |a_t| <= 1 acting as a transmission factor). Replaces the analyzer. BIREF_ERR_INVALID as above. */
 BIREF_API biref_status biref_light_world_analyzer(biref_light *l, const double axis[3]);
 
-/* 1 when the light has a world-fixed polarizer or analyzer (biref_light_at resolves it). */
+/* 1 when the light has a world-fixed polarizer or analyzer (a shader resolves it per hit). */
 BIREF_API int biref_light_is_world_fixed(const biref_light *l);
-
-/* The light as one wave pair sees it: world-fixed parts resolved in the basis (s, p_in) of the
- * incident wave and (s, p_out) of the outgoing wave (s shared, all unit world vectors, p = k x s).
- * A light without world-fixed parts is copied unchanged. */
-BIREF_API void biref_light_at(const biref_light *l, const double s[3], const double p_in[3], const double p_out[3],
-                              biref_light *out);
-
-/* The intensity a light passes through its analyzer with no slab in between (a light without
- * world-fixed parts, or one resolved by biref_light_at): sum C[i][j] P[i][k] conj(P[j][k]). */
-BIREF_API double biref_light_passthrough(const biref_light *l);
 
 /* A polarizer in its text form, as the command line and the Python bindings take it:
  * "linear:DEG" (linear, DEG degrees from s towards p) or "circular:+1" / "circular:-1" (also

@@ -16,6 +16,7 @@
 #include <stdio.h>
 
 #include "biref/common.h"
+#include "biref/material.h"
 #include "biref/polarization.h"
 #include "biref/spectral.h"
 #include "biref/stack.h"
@@ -46,6 +47,10 @@ typedef struct {
     double axis[3];     /* optic axis in the local frame (x = tangent, y = normal, z = x cross y), unit */
     double eta_o, eta_e;
     double thickness_nm;
+    /* A named dispersive material (scene key "material", material.h) instead of eta_o, eta_e
+     * (then 0), or NULL. The renderer integrates its slabs with n(λ) (biref_integrate_material):
+     * point look-ups (no prefilter), the CPU backend only. */
+    const biref_material *material;
     /* A stack slab (docs/STACKS.md §5): n_layers > 0 layers from the +normal face (local +y)
      * downwards, each optic axis in the local frame above, the scene's medium around; eta_o, eta_e,
      * axis and thickness_nm are then unused (thickness_nm: the layers' sum). 0: a plain slab. */

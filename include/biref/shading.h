@@ -60,7 +60,7 @@ BIREF_API biref_status biref_hit_frames_make(const biref_surface *s, const doubl
  * threads. sp is borrowed (it must outlive the shader; one context serves a whole process), opt
  * NULL means the analytic method (biref_integrator_options_default), light NULL unpolarized light
  * without analyzer. The light's s/p parts are relative to each ray's plane of incidence; its
- * world-fixed polarizers (biref_light_world_polarizer / _analyzer) are resolved at every hit
+ * world-fixed polarizers (biref_light_world_polarizer / _analyzer) are resolved at every hit (in the hit's frames)
  * (docs/SCENES.md "Polarisation"). BIREF_ERR_INVALID with one line in msg for bad options, a light
  * that is not finite or a light the method cannot integrate. */
 typedef struct biref_shader biref_shader;

@@ -772,11 +772,94 @@ def render(scene, method="analytic", width=None, height=None, samples=None, orde
 _PRESETS = {"disk": 0, "hole": 1, "beam": 2}
 
 
+_MESHIO_CELLS = {"triangle": 0, "triangle6": 1, "quad": 2, "quad8": 3, "quad9": 4}
+_MESHIO_SKIPPED = ("vertex", "line", "line3", "line4")
+_TENSORS = ("stress", "S", "sigma", "stresses")
+_SCALARS = (("stress_xx", "stress_yy", "stress_xy"), ("sxx", "syy", "sxy"), ("S11", "S22", "S12"), ("sxx", "syy", "txy"))
+
+
+def _point_array(mesh, name):
+    for k, v in mesh.point_data.items():
+        if k.lower() == name.lower():
+            return _np.asarray(v, dtype=float)
+    return None
+
+
+def _mesh_stress(mesh, stress):
+    """The nodal (sxx, syy, txy) as an (n, 3) array from a tensor or three scalars, by name."""
+    have = ", ".join(f"{k} ({_np.asarray(v).reshape(len(v), -1).shape[1]})" for k, v in mesh.point_data.items()) or "none"
+    if isinstance(stress, (tuple, list)):
+        cols = [_point_array(mesh, n) for n in stress]
+        if len(cols) != 3 or any(c is None for c in cols):
+            raise ValueError(f"stress: expected three point-data arrays of {list(stress)} (point data: {have})")
+        return _np.stack([c.reshape(-1) for c in cols], axis=1)
+    names = [stress] if stress else list(_TENSORS)
+    for n in names:
+        t = _point_array(mesh, n)
+        if t is None:
+            continue
+        t = t.reshape(len(t), -1)
+        idx = {3: (0, 1, 2), 6: (0, 1, 3), 9: (0, 4, 1)}.get(t.shape[1])
+        if idx is None:
+            raise ValueError(f"stress: array '{n}' has {t.shape[1]} components; a stress tensor has 3, 6 or 9")
+        return t[:, idx]
+    if not stress:
+        for trio in _SCALARS:
+            cols = [_point_array(mesh, n) for n in trio]
+            if all(c is not None for c in cols):
+                return _np.stack([c.reshape(-1) for c in cols], axis=1)
+        for k in mesh.cell_data:
+            if k.lower() in [t.lower() for t in _TENSORS]:
+                raise ValueError(f"stress: '{k}' is cell data (one value per element); export nodal stresses")
+    raise ValueError(f"stress: no point-data array {stress or 'with a usual stress name'} (point data: {have})")
+
+
+def _mesh_from_meshio(mesh, stress, length_unit, stress_unit):
+    """A biref_pe_mesh (garbage-collected) from a meshio mesh: plane cells, nodal stresses."""
+    lengths, stresses = {"mm": 1e-3, "m": 1.0}, {"MPa": 1e6, "Pa": 1.0}
+    if length_unit not in lengths or stress_unit not in stresses:
+        raise ValueError("length_unit: expected mm or m; stress_unit: expected MPa or Pa")
+    pts = _np.asarray(mesh.points, dtype=float)
+    if pts.ndim != 2 or pts.shape[1] not in (2, 3) or not len(pts):
+        raise ValueError("mesh: expected points of 2 or 3 coordinates")
+    if pts.shape[1] == 3 and _np.ptp(pts[:, 2]) > 1e-9 * max(1.0, _np.abs(pts[:, :2]).max()):
+        raise ValueError("mesh: the points are not in one plane z = const (a shell or a 3-D part); export a "
+                         "plane-stress model, or a section in the x-y plane")
+    types, conn = [], []
+    for block in mesh.cells:
+        if block.type in _MESHIO_SKIPPED:
+            continue
+        if block.type not in _MESHIO_CELLS:
+            raise ValueError(f"mesh: {block.type} cells: biref pictures plane stress; export a plane-stress model, "
+                             "or a section in the x-y plane")
+        data = _np.asarray(block.data, dtype=_np.uint64)
+        types += [_MESHIO_CELLS[block.type]] * len(data)
+        conn.append(data.reshape(-1))
+    if not types:
+        raise ValueError("mesh: no plane cells (triangle, triangle6, quad, quad8, quad9)")
+    xy = _np.ascontiguousarray(pts[:, :2] * lengths[length_unit])
+    st = _np.ascontiguousarray(_mesh_stress(mesh, stress) * stresses[stress_unit])
+    if len(st) != len(xy):
+        raise ValueError("stress: one value per point expected")
+    tp = _np.ascontiguousarray(types, dtype=_np.int32)
+    cn = _np.ascontiguousarray(_np.concatenate(conn))
+    el = _ffi.new("biref_pe_elements *")
+    el.nodes, el.elements = len(xy), len(tp)
+    el.xy = _ffi.cast("const double *", _ffi.from_buffer(xy))
+    el.stress = _ffi.cast("const double *", _ffi.from_buffer(st))
+    el.type = _ffi.cast("const int *", _ffi.from_buffer(tp))
+    el.conn = _ffi.cast("const size_t *", _ffi.from_buffer(cn))
+    out = _ffi.new("biref_pe_mesh **")
+    _call("mesh", _lib.biref_pe_mesh_from_elements, el, out)
+    return _ffi.gc(out[0], _lib.biref_pe_mesh_destroy)
+
+
 def photoelastic(preset="disk", stress_grid=None, thickness_mm=None, radius_mm=None, load_N=500.0, stress_MPa=4.0,
                  width_mm=60.0, height_mm=None, tension_deg=0.0, length_mm=100.0, depth_mm=20.0, moment_Nmm=2000.0,
                  material="polycarbonate", n0=None, C_brewster=None, eta_i=1.0, polariscope="circular",
                  field="dark", polarizer_deg=0.0, light="white", lambda_nm=589.0, size=512, supersample=2,
-                 tilt_deg=0.0, exposure=1.0, threads=0, space="linear_srgb", antialias="prefilter"):
+                 tilt_deg=0.0, exposure=1.0, threads=0, space="linear_srgb", antialias="prefilter", mesh=None,
+                 stress=None, length_unit="mm", stress_unit="MPa"):
     """A stressed plate in a polariscope, like ``biref photoelastic -o``: a numpy float array of
     shape (height, width, 3) whose longer side has ``size`` pixels.
 
@@ -785,7 +868,12 @@ def photoelastic(preset="disk", stress_grid=None, thickness_mm=None, radius_mm=N
 
     preset "disk" (radius_mm 25, load_N), "hole" (radius_mm 5, width_mm, height_mm, stress_MPa,
     tension_deg) or "beam" (length_mm, depth_mm, moment_Nmm); or stress_grid, a CSV file with
-    columns x_mm,y_mm,sxx_MPa,syy_MPa,txy_MPa. Units and defaults as on the command line.
+    columns x_mm,y_mm,sxx_MPa,syy_MPa,txy_MPa; or mesh, a meshio mesh (any format meshio reads)
+    with plane cells (triangle, triangle6, quad, quad8, quad9) and nodal stresses, interpolated
+    inside each element as ``biref photoelastic --fea``: stress names the point-data tensor (3, 6
+    or 9 components) or is a tuple of three scalar arrays (sxx, syy, txy); by default the names
+    the command line tries. length_unit mm|m, stress_unit MPa|Pa. Units and defaults as on the
+    command line (a mesh gets the 5 % margin of --margin-pct).
     """
     if space not in _SPACES:
         raise ValueError(f"space: expected one of {', '.join(_SPACES)}, got {space!r}")
@@ -810,7 +898,16 @@ def photoelastic(preset="disk", stress_grid=None, thickness_mm=None, radius_mm=N
     mm = 1e-3
     fld = _ffi.new("biref_pe_field *")
     grid = None
-    if stress_grid is not None:
+    if mesh is not None and (stress_grid is not None or preset != "disk"):
+        raise ValueError("give one of preset, stress_grid and mesh")
+    if mesh is not None:
+        h = (6.0 if thickness_mm is None else float(thickness_mm)) * mm
+        grid = _mesh_from_meshio(mesh, stress, length_unit, stress_unit)  # kept alive with the field
+        s = _lib.biref_pe_field_nodes(fld, grid, h, msg, _MSG)
+        if s == _lib.BIREF_OK:
+            d = 0.05 * max(fld.frame[1] - fld.frame[0], fld.frame[3] - fld.frame[2])
+            fld.frame = [fld.frame[0] - d, fld.frame[1] + d, fld.frame[2] - d, fld.frame[3] + d]
+    elif stress_grid is not None:
         gp = _ffi.new("biref_pe_grid **")
         s = _lib.biref_pe_grid_load(str(stress_grid).encode(), gp, msg, _MSG)
         if s != _lib.BIREF_OK:

@@ -308,3 +308,35 @@ def test_spectrum_with_a_material_matches_cli():
         biref.slab(material="unobtainium", axis=(0, 0, 1), thickness_um=10)
     with pytest.raises(ValueError, match="eta_o"):
         biref.slab(eta_o=1.5, material="calcite", axis=(0, 0, 1), thickness_um=10)
+
+
+@needs_cli
+def test_photoelastic_meshio_mesh_matches_cli_fea(tmp_path):
+    """A meshio mesh (here the plate with a hole's .vtu) renders as `biref photoelastic --fea`
+    renders the file: the same picture, the hole empty without a boundary."""
+    meshio = pytest.importorskip("meshio")
+    from biref._native import ffi, lib
+    vtu = os.path.join(ROOT, "examples", "photoelastic", "fea", "plate_hole.vtu")
+    m = meshio.read(vtu)
+    args = dict(thickness_mm=3, light="mono", lambda_nm=589, size=48, supersample=1, antialias="none")
+    enc = biref.photoelastic(mesh=m, space="srgb", **args)
+    out = tmp_path / "plate.png"
+    info = cli_json("photoelastic", "--fea", vtu, "--thickness-mm", "3", "--light", "mono", "--size", "48",
+                    "--supersample", "1", "--antialias", "none", "-o", str(out))
+    h, w, _ = enc.shape
+    assert [info["width"], info["height"]] == [w, h]
+    pw, ph, rgb = ffi.new("int *"), ffi.new("int *"), ffi.new("unsigned char **")
+    msg = ffi.new("char[]", 256)
+    assert lib.biref_png_read_rgb8(str(out).encode(), pw, ph, rgb, msg, 256) == lib.BIREF_OK
+    png = np.frombuffer(ffi.buffer(rgb[0], w * h * 3), dtype=np.uint8).reshape(h, w, 3).astype(int)
+    mine = np.clip(np.round(np.clip(enc, 0, 1) * 255), 0, 255).astype(int)
+    assert np.abs(mine - png).max() <= 1
+    assert mine[h // 2, w // 2].max() == 0  # the hole: the dark field's background
+    stressed = biref.photoelastic(mesh=m, stress="S", **args)
+    assert np.array_equal(stressed, biref.photoelastic(mesh=m, **args))
+    with pytest.raises(ValueError, match="no point-data array"):
+        biref.photoelastic(mesh=m, stress="sigma_vm", **args)
+    solid = meshio.Mesh(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1.0]]), [("tetra", np.array([[0, 1, 2, 3]]))],
+                        point_data={"S": np.zeros((4, 6))})
+    with pytest.raises(ValueError, match="plane-stress"):
+        biref.photoelastic(mesh=solid, **args)

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "biref/experimental.h" /* biref_light_at, biref_light_passthrough */
 #include "biref/polarization.h"
 #include "error.h"
 

@@ -41,6 +41,19 @@ static biref_status check_render_options(const biref_render_options *opt, char *
     return BIREF_OK;
 }
 
+/* Dispersive slabs: physical over the spectral band (one line, "slabs[i].material: ..."). */
+static biref_status check_materials(const biref_spectral *sp, const biref_scene *scene, char *msg, size_t msg_len)
+{
+    const biref_cmf_band *band = biref_spectral_band(sp);
+    for (int i = 0; i < scene->n_slabs; i++) {
+        const biref_material *m = scene->slabs[i].material;
+        char why[BIREF_MSG_SIZE];
+        if (m && biref_material_check_band(m, band->lmin_nm, band->lmax_nm, why, sizeof why) != BIREF_OK)
+            return biref_fail(msg, msg_len, "slabs[%d].material: %s", i, why);
+    }
+    return BIREF_OK;
+}
+
 static void slabs_init(biref_renderer *r, const biref_scene *scene)
 {
     r->n_slabs = scene->n_slabs;
@@ -59,8 +72,11 @@ static void slabs_init(biref_renderer *r, const biref_scene *scene)
         v3_sub(sl->center, r->cam.origin, rel);
         sl->center_n = v3_dot(rel, sl->normal);
         sl->is_stack = biref_scene_slab_stack(scene, in, &sl->stack) == BIREF_OK;
-        sl->base.eta_o = in->eta_o;
-        sl->base.eta_e = in->eta_e;
+        /* A dispersive slab's hits are integrated with n(λ) (biref_shader_eval_material); its base
+         * indices only stand in for the frames' and the kernel's set-up. */
+        sl->material = in->material;
+        sl->base.eta_o = in->material ? 1.5 : in->eta_o;
+        sl->base.eta_e = in->material ? 1.5 : in->eta_e;
         sl->base.thickness_nm = in->thickness_nm;
         sl->base.eta_i = scene->eta_medium;
         memcpy(sl->base.axis, in->axis, sizeof sl->base.axis);
@@ -108,6 +124,7 @@ biref_status biref_renderer_create(const biref_spectral *sp, const biref_scene *
     if (!sp || !scene || !opt) return biref_fail(msg, msg_len, "no spectral context, scene or options");
     biref_status s = biref_scene_validate(scene, msg, msg_len);
     if (!s) s = check_render_options(opt, msg, msg_len);
+    if (!s) s = check_materials(sp, scene, msg, msg_len);
     if (s) return s;
 
     biref_renderer *r = calloc(1, sizeof *r);

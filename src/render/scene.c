@@ -67,8 +67,8 @@ static biref_status tangent_frame(pctx *c, const cJSON *obj, const char *where, 
  * optics next to it. */
 static biref_status parse_stack_slab(pctx *c, const cJSON *sl, const char *w, biref_scene_slab *out)
 {
-    static const char *const plain[] = {"thickness_mm", "thickness_um", "axis", "eta_o", "eta_e"};
-    for (int k = 0; k < 5; k++)
+    static const char *const plain[] = {"thickness_mm", "thickness_um", "axis", "eta_o", "eta_e", "material"};
+    for (int k = 0; k < 6; k++)
         if (cJSON_GetObjectItemCaseSensitive(sl, plain[k])) {
             field_path p = path_key(w, plain[k]);
             return FAIL(c, p.s, "a stack slab (layers) takes its optics from its layers; give one or the other");
@@ -88,10 +88,30 @@ static biref_status parse_stack_slab(pctx *c, const cJSON *sl, const char *w, bi
     return s;
 }
 
+/* "eta_o" and "eta_e", or "material" (a named dispersive material, docs/MATERIALS.md). */
+static biref_status parse_slab_indices(pctx *c, const cJSON *sl, const char *w, biref_scene_slab *out)
+{
+    const cJSON *mat = cJSON_GetObjectItemCaseSensitive(sl, "material");
+    out->material = NULL;
+    if (!mat) {
+        biref_status s = biref_field_get_positive(c, sl, w, "eta_o", 1, &out->eta_o);
+        return s ? s : biref_field_get_positive(c, sl, w, "eta_e", 1, &out->eta_e);
+    }
+    field_path p = path_key(w, "material");
+    for (int e = 0; e < 2; e++)
+        if (cJSON_GetObjectItemCaseSensitive(sl, e ? "eta_e" : "eta_o"))
+            return FAIL(c, p.s, "given with %s (the material gives both indices)", e ? "eta_e" : "eta_o");
+    if (!cJSON_IsString(mat)) return FAIL(c, p.s, "must be the name of a material (biref material list)");
+    out->material = biref_material_find(mat->valuestring);
+    if (!out->material) return FAIL(c, p.s, "unknown material '%s' (biref material list names them)", mat->valuestring);
+    out->eta_o = out->eta_e = 0.0;
+    return BIREF_OK;
+}
+
 static biref_status parse_slab(pctx *c, const cJSON *sl, const char *w, biref_scene_slab *out)
 {
-    static const char *const keys[] = {"center", "size",  "thickness_mm", "thickness_um", "normal",
-                                       "tangent", "axis", "eta_o",        "eta_e",        "layers", NULL};
+    static const char *const keys[] = {"center", "size",  "thickness_mm", "thickness_um", "normal", "tangent",
+                                       "axis",   "eta_o", "eta_e",        "material",     "layers", NULL};
     biref_status s = biref_field_as_object(c, sl, w);
     if (!s) s = biref_field_check_keys(c, sl, w, keys);
     if (!s) s = biref_field_get_vec(c, sl, w, "center", 1, 3, out->center);
@@ -124,8 +144,7 @@ static biref_status parse_slab(pctx *c, const cJSON *sl, const char *w, biref_sc
     if (!s) s = biref_field_get_direction(c, sl, w, "normal", 1, out->normal);
     if (!s) s = tangent_frame(c, sl, w, out->normal, out->tangent);
     if (!s) s = biref_field_get_direction(c, sl, w, "axis", 1, out->axis);
-    if (!s) s = biref_field_get_positive(c, sl, w, "eta_o", 1, &out->eta_o);
-    if (!s) s = biref_field_get_positive(c, sl, w, "eta_e", 1, &out->eta_e);
+    if (!s) s = parse_slab_indices(c, sl, w, out);
     return s;
 }
 

@@ -77,6 +77,8 @@ biref_status biref_scene_validate(const biref_scene *sc, char *msg, size_t msg_l
         if (!unit_vec(sl->tangent) || fabs(v3_dot(sl->tangent, sl->normal)) > 1e-6)
             return SLAB_FAIL("tangent", "must be a unit vector orthogonal to the normal");
         double thickness = sl->thickness_nm;
+        if (sl->n_layers != 0 && sl->material)
+            return SLAB_FAIL("material", "a stack slab (layers) takes its optics from its layers");
         if (sl->n_layers != 0) {
             biref_stack st;
             char why[200];
@@ -90,8 +92,9 @@ biref_status biref_scene_validate(const biref_scene *sc, char *msg, size_t msg_l
             if (!(isfinite(sl->thickness_nm) && sl->thickness_nm > 0))
                 return SLAB_FAIL("thickness", "must be positive");
             if (!unit_vec(sl->axis)) return SLAB_FAIL("axis", "must be a unit vector");
-            if (!(isfinite(sl->eta_o) && sl->eta_o > 0)) return SLAB_FAIL("eta_o", "must be positive");
-            if (!(isfinite(sl->eta_e) && sl->eta_e > 0)) return SLAB_FAIL("eta_e", "must be positive");
+            /* A dispersive material is checked over the renderer's band when it is created. */
+            if (!sl->material && !(isfinite(sl->eta_o) && sl->eta_o > 0)) return SLAB_FAIL("eta_o", "must be positive");
+            if (!sl->material && !(isfinite(sl->eta_e) && sl->eta_e > 0)) return SLAB_FAIL("eta_e", "must be positive");
         }
         /* The camera inside a slab sees no well-defined front face. Scene units are metres,
          * so the slab occupies |distance to its mid-plane| <= d / 2 over its rectangle. */

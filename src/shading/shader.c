@@ -118,6 +118,30 @@ biref_status biref_shader_eval(const biref_shader *sh, const biref_hit_frames *f
     return s;
 }
 
+biref_status biref_shader_eval_material(const biref_shader *sh, const biref_material *m, const biref_hit_frames *f,
+                                        double T[3], double R[3])
+{
+    biref_light lT = sh->light, lR = sh->light;
+    if (sh->world_fixed) {
+        double k_refl_in[3];
+        v3_scale(f->mirror, -1.0, k_refl_in);
+        biref_shader_side_light(sh, f->x_T, f->k_view, f->k_view, &lT);
+        biref_shader_side_light(sh, f->x_R, k_refl_in, f->k_view, &lR);
+    }
+    /* Reflection: the same slab lit from the other face, the frame rotated by 180 degrees about z
+     * (axis (a, b, c) -> (-a, -b, c), as biref_slab_state_flip). */
+    biref_slab flipped = f->slab;
+    flipped.axis[0] = -f->slab.axis[0];
+    flipped.axis[1] = -f->slab.axis[1];
+    biref_integration res;
+    biref_status s = biref_integrate_material(sh->it, m, &f->slab, f->theta, BIREF_SIDE_TRANSMISSION, &lT, &res);
+    if (s != BIREF_OK) return s;
+    memcpy(T, res.T, sizeof res.T);
+    s = biref_integrate_material(sh->it, m, &flipped, f->theta, BIREF_SIDE_REFLECTION, &lR, &res);
+    memcpy(R, res.R, sizeof res.R);
+    return s;
+}
+
 void biref_shader_packet(const biref_shader *sh, const biref_packet_hit *hits, const biref_opl_footprint *fp,
                          size_t n, double (*T)[3], double (*R)[3], unsigned char *scalar)
 {

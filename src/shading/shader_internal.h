@@ -54,6 +54,10 @@ double biref_shader_background(const biref_shader *sh, const double k[3], const 
                                const double tangent[3]);
 
 /* A hit whose evaluation failed: the slab shown as a perfect mirror seen through the analyzer. */
+/* biref_shader_eval for a slab of a dispersive material (f->slab's indices are ignored): T and R by
+ * biref_integrate_material with the shader's integrator, point look-ups. */
+biref_status biref_shader_eval_material(const biref_shader *sh, const biref_material *m, const biref_hit_frames *f,
+                                        double T[3], double R[3]);
 void biref_shader_failed_hit(const biref_shader *sh, const biref_hit_frames *f, double T[3], double R[3]);
 
 #endif

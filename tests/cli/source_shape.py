@@ -48,7 +48,6 @@ MAX_FUNCTION_LINES = 120
 # stays the list of offenders); never raise a number.
 ALLOWED_FILES = {
     # path under src/: lines
-    "photoelastic/mesh.c": 772,
 }
 ALLOWED_FUNCTIONS = {
     # (path under src/, function): lines from its opening to its closing brace

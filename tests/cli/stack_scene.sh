@@ -96,6 +96,7 @@ L='{"eta_o": 1.5, "eta_e": 1.51, "azimuth_deg": 45, "thickness_um": 27}'
 bad "layers with eta_o" 'slabs\[0\].eta_o' "{\"layers\": [$L], \"eta_o\": 1.5}"
 bad "layers with a thickness" 'slabs\[0\].thickness_um' "{\"layers\": [$L], \"thickness_um\": 5}"
 bad "layers with an axis" 'slabs\[0\].axis' "{\"layers\": [$L], \"axis\": [0, 1, 0]}"
+bad "layers with a material" 'slabs\[0\].material' "{\"layers\": [$L], \"material\": \"quartz\"}"
 bad "empty layers" 'slabs\[0\].layers' '{"layers": []}'
 bad "layers not an array" 'slabs\[0\].layers' '{"layers": {"eta": 1.5}}'
 bad "layer without thickness" 'slabs\[0\].layers\[1\].thickness_um' "{\"layers\": [$L, {\"eta\": 1.5}]}"

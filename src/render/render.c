@@ -194,13 +194,18 @@ static void render_pixels(const biref_renderer *r, render_tile *tile, int x0, in
     for (int done = 0, total = np * KK; done < total; done += tile->n) {
         tile->n = total - done < RENDER_TILE ? total - done : RENDER_TILE;
         for (int j = 0; j < tile->n; j++) {
+            if (K == 1) { /* the pixel centres, without the divisions below */
+                tile->fx[j] = x0 + j + 0.5;
+                tile->fy[j] = y + 0.5;
+                continue;
+            }
             const int q = done + j, x = x0 + q / KK, s = q % KK;
-            tile->fx[j] = x + (K == 1 ? 0.5 : (s % K + jitter(x, y, s, 0x9e3779b9u)) * h);
-            tile->fy[j] = y + (K == 1 ? 0.5 : (s / K + jitter(x, y, s, 0x7f4a7c15u)) * h);
+            tile->fx[j] = x + (s % K + jitter(x, y, s, 0x9e3779b9u)) * h;
+            tile->fy[j] = y + (s / K + jitter(x, y, s, 0x7f4a7c15u)) * h;
         }
         biref_render_tile(r, tile, counts);
         for (int j = 0; j < tile->n; j++) {
-            const int p = (done + j) / KK;
+            const int p = K == 1 ? j : (done + j) / KK;
             for (int c = 0; c < 3; c++) acc[p][c] += tile->xyz[c][j];
             hit[p] |= tile->slab[j] >= 0.0;
         }

@@ -15,6 +15,17 @@ int cli_load_scene(const char *cmd, const char *path, biref_scene *scene)
     return 0;
 }
 
+int cli_gl_refuse_stacks(const char *cmd, const char *path, const biref_scene *scene)
+{
+    for (int i = 0; i < scene->n_slabs; i++)
+        if (scene->slabs[i].n_layers > 0)
+            return cli_error(cmd, "%s: slabs[%d] is a stack (layers), which the GLSL path does not render (use the "
+                                  "CPU back-end)",
+                             path, i),
+                   CLI_EXIT_USAGE;
+    return 0;
+}
+
 int cli_scene_resize(const char *cmd, biref_scene *scene, long width, long height)
 {
     if (width > 0) scene->camera.width = (int)width;

@@ -8,6 +8,10 @@
  * CLI_EXIT_USAGE on failure (a missing or unreadable scene is bad input), else 0. */
 int cli_load_scene(const char *cmd, const char *path, biref_scene *scene);
 
+/* The GLSL path covers no stack method: refuses (CLI_EXIT_USAGE, one line naming the slab) a scene
+ * with a stack slab (layers) for the GL back-end and gl-data; 0 otherwise. */
+int cli_gl_refuse_stacks(const char *cmd, const char *path, const biref_scene *scene);
+
 /* Applies --width/--height overrides (0 = keep) and re-validates. */
 int cli_scene_resize(const char *cmd, biref_scene *scene, long width, long height);
 

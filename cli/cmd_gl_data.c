@@ -87,7 +87,9 @@ int cmd_gl_data(int argc, char **argv)
     cJSON *presets = cJSON_CreateObject();
     for (int i = first_arg; i < argc && !rc; i++) {
         biref_scene scene;
-        if ((rc = cli_load_scene(CMD, argv[i], &scene)) || (rc = cli_gl_scene_check(CMD, &scene))) break;
+        if ((rc = cli_load_scene(CMD, argv[i], &scene)) || (rc = cli_gl_refuse_stacks(CMD, argv[i], &scene)) ||
+            (rc = cli_gl_scene_check(CMD, &scene)))
+            break;
         char name[256];
         basename_of(argv[i], name, sizeof name);
         if (cJSON_GetObjectItemCaseSensitive(presets, name)) {

@@ -27,6 +27,7 @@ typedef struct {
     const char *out, *pfm, *chroma, *scene_path;
     long width, height, threads, samples, supersample;
     int json, gl, antialias;
+    int stack_slabs; /* slabs given as stacks (layers) */
     biref_render_options opt;
 } render_args;
 
@@ -60,7 +61,8 @@ static const cli_opt OPTS[] = {
     CLI_CUSTOM("method", "M", OPT_METHOD,
                "analytic (default; the paper's eq. 26), numeric, ground-truth\n"
                "(numeric with " STR(BIREF_GROUND_TRUTH_SAMPLES) " samples) or expansion (exact integral of the\n"
-               "path-group expansion; any polarizer, docs/PHYSICS.md §5)"),
+               "path-group expansion; any polarizer, docs/PHYSICS.md §5); stack slabs:\n"
+               "analytic and expansion by the stack expansion (docs/STACKS.md §5)"),
     CLI_CUSTOM("backend", "B", OPT_BACKEND,
                "cpu (default) or gl: the analytic method as a GLSL shader through\n"
                "EGL and OpenGL >= 4.3 (any polarizer; docs/GPU.md)"),
@@ -220,6 +222,14 @@ static int print_report(const render_args *a, const render_result *res)
             cJSON_AddNumberToObject(root, "samples", samples_used);
         else
             cJSON_AddNullToObject(root, "samples");
+        /* A stack has no analytic method: the analytic method renders stacks by their expansion. */
+        cJSON_AddNumberToObject(root, "stack_slabs", a->stack_slabs);
+        if (a->stack_slabs)
+            cJSON_AddStringToObject(root, "stack_method", opt->method == BIREF_METHOD_ANALYTIC
+                                                              ? "expansion"
+                                                              : biref_method_name(opt->method));
+        else
+            cJSON_AddNullToObject(root, "stack_method");
         cJSON_AddStringToObject(root, "antialias", opt->antialias == BIREF_ANTIALIAS_PREFILTER ? "prefilter" : "none");
         cJSON_AddNumberToObject(root, "supersample", opt->supersample);
         cJSON_AddNumberToObject(root, "ms", round(res->ms * 1000) / 1000);
@@ -259,7 +269,17 @@ int cmd_render(int argc, char **argv)
     biref_scene scene;
     int rc = cli_load_scene(CMD, a.scene_path, &scene);
     if (!rc) rc = cli_scene_resize(CMD, &scene, a.width, a.height);
+    if (!rc && a.gl) rc = cli_gl_refuse_stacks(CMD, a.scene_path, &scene);
     if (rc) return rc;
+    for (int i = 0; i < scene.n_slabs; i++)
+        if (scene.slabs[i].n_layers) {
+            a.stack_slabs++;
+            if (a.antialias == BIREF_ANTIALIAS_PREFILTER)
+                return cli_error(CMD, "%s: slabs[%d] is a stack (layers), whose integration has no prefilter: "
+                                      "anti-alias by --supersample",
+                                 a.scene_path, i),
+                       CLI_EXIT_USAGE;
+        }
     /* Fail on a bad output path before rendering for seconds, not after. */
     const char *inputs[2] = {a.scene_path, a.out};
     if ((rc = cli_check_output(CMD, a.out, inputs, 1)) || (a.pfm && (rc = cli_check_output(CMD, a.pfm, inputs, 2))) ||

@@ -19,6 +19,7 @@
 #include "biref/material.h"
 #include "biref/polarization.h"
 #include "biref/spectral.h"
+#include "biref/stack.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -50,6 +51,11 @@ typedef struct {
      * (then 0), or NULL. The renderer integrates its slabs with n(λ) (biref_integrate_material):
      * point look-ups (no prefilter), the CPU backend only. */
     const biref_material *material;
+    /* A stack slab (docs/STACKS.md §5): n_layers > 0 layers from the +normal face (local +y)
+     * downwards, each optic axis in the local frame above, the scene's medium around; eta_o, eta_e,
+     * axis and thickness_nm are then unused (thickness_nm: the layers' sum). 0: a plain slab. */
+    int n_layers;
+    biref_layer layers[BIREF_STACK_MAX_LAYERS];
 } biref_scene_slab;
 
 /* An emitting rectangle (both faces), seen along rays that leave a slab or the camera. */

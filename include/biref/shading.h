@@ -20,6 +20,7 @@
 #include "biref/optics.h"
 #include "biref/polarization.h"
 #include "biref/spectral.h"
+#include "biref/stack.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -89,6 +90,29 @@ BIREF_API biref_status biref_shade_hit(const biref_shader *sh, const biref_surfa
 BIREF_API biref_status biref_shade_hits(const biref_shader *sh, size_t n, const biref_surface *surfaces,
                                         const double (*view_dirs)[3], double (*T_xyz)[3], double (*R_xyz)[3],
                                         biref_status *status);
+
+/* A stack of layers at a surface hit (docs/STACKS.md §5), in world coordinates: normal and tangent
+ * as in biref_surface; the stack's layers listed from the face the normal points out of (local +y)
+ * downwards, each optic axis in the local frame (x = tangent, y = normal, z = x cross y), eta_i the
+ * surround on both sides. The stack is borrowed for the call. */
+typedef struct {
+    double normal[3];
+    double tangent[3];
+    const biref_stack *stack;
+} biref_stack_surface;
+
+/* Shades one hit on a stack as biref_shade_hit shades a slab (same T_xyz, R_xyz and frames; a
+ * one-layer stack gives the slab's numbers to the method's accuracy). The stack's band integrals
+ * (biref_stack_spectrum) in each side's frame: the analytic and expansion methods use the stack's
+ * path expansion (it has no analytic method; adaptive numeric integration where the expansion does
+ * not apply), the numeric methods their samples of the exact Jones matrices. Any light the shader
+ * takes, world-fixed polarizers included. frames->slab is layer 0's constants, not the stack.
+ * BIREF_ERR_INVALID for a bad surface, stack or direction; BIREF_ERR_ILLCOND when the evaluation
+ * breaks down; BIREF_ERR_NOMEM (the expansion allocates). Costs about a millisecond per hit (the
+ * stack's expansion, docs/STACKS.md §2), not the slab's microseconds. */
+BIREF_API biref_status biref_shade_stack_hit(const biref_shader *sh, const biref_stack_surface *s,
+                                             const double view_dir[3], double T_xyz[3], double R_xyz[3],
+                                             biref_hit_frames *frames);
 
 #ifdef __cplusplus
 }

@@ -10,6 +10,7 @@
 #include "biref/stack.h"
 #include "error.h"
 #include "io/json_strict.h"
+#include "optics/stack_file.h"
 #include "io/textfile.h"
 
 /* Files beyond this are not stacks (64 layers take a few KB). */
@@ -124,6 +125,30 @@ static biref_status parse_layer(stack_ctx *c, const cJSON *obj, biref_layer *l)
     return get_thickness(c, obj, &l->thickness_nm);
 }
 
+/* The "layers" array (NULL: missing) into out->layers and out->n_layers; errors name the JSON path
+ * below prefix ("" for a stack file, "slabs[2]" in a scene). */
+biref_status biref_stack_parse_layers(const cJSON *layers, const char *prefix, biref_stack *out, char *msg,
+                                      size_t msg_len)
+{
+    stack_ctx ctx = {msg, msg_len, ""}, *c = &ctx;
+    snprintf(c->path, sizeof c->path, "%s", prefix);
+    if (!layers) return fail_at(c, "layers", "missing");
+    int n = cJSON_IsArray(layers) ? cJSON_GetArraySize(layers) : -1;
+    if (n < 1 || n > BIREF_STACK_MAX_LAYERS) {
+        char what[96];
+        snprintf(what, sizeof what, "expected an array of 1 to %d layers", BIREF_STACK_MAX_LAYERS);
+        return fail_at(c, "layers", what);
+    }
+    int i = 0;
+    for (const cJSON *e = layers->child; e; e = e->next, i++) {
+        snprintf(c->path, sizeof c->path, "%s%slayers[%d]", prefix, prefix[0] ? "." : "", i);
+        biref_status s = parse_layer(c, e, &out->layers[i]);
+        if (s) return s;
+    }
+    out->n_layers = n;
+    return BIREF_OK;
+}
+
 biref_status biref_stack_parse(const char *text, size_t len, biref_stack *out, char *msg, size_t msg_len)
 {
     stack_ctx ctx = {msg, msg_len, ""}, *c = &ctx;
@@ -150,24 +175,8 @@ biref_status biref_stack_parse(const char *text, size_t len, biref_stack *out, c
     }
     st->eta_i = 1.0;
     if ((s = get_positive(c, root, "eta_i", 0, &st->eta_i, NULL))) goto done;
-    const cJSON *layers = cJSON_GetObjectItemCaseSensitive(root, "layers");
-    if (!layers) {
-        s = fail_at(c, "layers", "missing");
+    if ((s = biref_stack_parse_layers(cJSON_GetObjectItemCaseSensitive(root, "layers"), "", st, msg, msg_len)))
         goto done;
-    }
-    int n = cJSON_IsArray(layers) ? cJSON_GetArraySize(layers) : -1;
-    if (n < 1 || n > BIREF_STACK_MAX_LAYERS) {
-        char what[96];
-        snprintf(what, sizeof what, "expected an array of 1 to %d layers", BIREF_STACK_MAX_LAYERS);
-        s = fail_at(c, "layers", what);
-        goto done;
-    }
-    int i = 0;
-    for (const cJSON *e = layers->child; e; e = e->next, i++) {
-        snprintf(c->path, sizeof c->path, "layers[%d]", i);
-        if ((s = parse_layer(c, e, &st->layers[i]))) goto done;
-    }
-    st->n_layers = n;
     if ((s = biref_stack_check(st, msg, msg_len)) == BIREF_OK) *out = *st;
 done:
     free(st);

@@ -10,6 +10,7 @@
 #include "error.h"
 #include "render/render_internal.h"
 #include "render/render_tile.h"
+#include "render/scene_fields.h"
 #include "spectral/integrator_internal.h"
 #include "shading/vec3.h"
 
@@ -70,6 +71,7 @@ static void slabs_init(biref_renderer *r, const biref_scene *scene)
         double rel[3];
         v3_sub(sl->center, r->cam.origin, rel);
         sl->center_n = v3_dot(rel, sl->normal);
+        sl->is_stack = biref_scene_slab_stack(scene, in, &sl->stack) == BIREF_OK;
         /* A dispersive slab's hits are integrated with n(λ) (biref_shader_eval_material); its base
          * indices only stand in for the frames' and the kernel's set-up. */
         sl->material = in->material;

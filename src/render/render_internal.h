@@ -30,6 +30,8 @@ typedef struct {
     biref_slab base;      /* indices, thickness, eta_i; axis filled per ray */
     const biref_material *material; /* dispersive (the indices in base are stand-ins), or NULL */
     double center_n;      /* (center - camera origin) . normal: the camera ray's plane distance */
+    int is_stack;         /* a stack slab: base unused (the packet kernel's work on it is discarded) */
+    biref_stack stack;    /* is_stack: axes in the local frame, layers from the +normal face */
 } render_slab;
 
 typedef struct {

@@ -14,6 +14,7 @@
 
 #include "biref/render.h"
 #include "io/json_strict.h"
+#include "optics/stack_file.h"
 #include "render/scene_fields.h"
 #include "render/scene_light.h"
 #include "shading/vec3.h"
@@ -62,6 +63,31 @@ static biref_status tangent_frame(pctx *c, const cJSON *obj, const char *where, 
     return BIREF_OK;
 }
 
+/* A stack slab: "layers" as in stack files (the stack reader's own), none of the plain slab's
+ * optics next to it. */
+static biref_status parse_stack_slab(pctx *c, const cJSON *sl, const char *w, biref_scene_slab *out)
+{
+    static const char *const plain[] = {"thickness_mm", "thickness_um", "axis", "eta_o", "eta_e", "material"};
+    for (int k = 0; k < 6; k++)
+        if (cJSON_GetObjectItemCaseSensitive(sl, plain[k])) {
+            field_path p = path_key(w, plain[k]);
+            return FAIL(c, p.s, "a stack slab (layers) takes its optics from its layers; give one or the other");
+        }
+    biref_stack st;
+    biref_status s = biref_stack_parse_layers(cJSON_GetObjectItemCaseSensitive(sl, "layers"), w, &st, c->msg,
+                                              c->msg_len);
+    if (s) return s;
+    out->n_layers = st.n_layers;
+    memcpy(out->layers, st.layers, (size_t)st.n_layers * sizeof st.layers[0]);
+    out->thickness_nm = 0.0;
+    for (int i = 0; i < st.n_layers; i++) out->thickness_nm += st.layers[i].thickness_nm;
+    v3_set(out->axis, 0, 1, 0);
+    out->eta_o = out->eta_e = 1.0;
+    s = biref_field_get_direction(c, sl, w, "normal", 1, out->normal);
+    if (!s) s = tangent_frame(c, sl, w, out->normal, out->tangent);
+    return s;
+}
+
 /* "eta_o" and "eta_e", or "material" (a named dispersive material, docs/MATERIALS.md). */
 static biref_status parse_slab_indices(pctx *c, const cJSON *sl, const char *w, biref_scene_slab *out)
 {
@@ -84,8 +110,8 @@ static biref_status parse_slab_indices(pctx *c, const cJSON *sl, const char *w, 
 
 static biref_status parse_slab(pctx *c, const cJSON *sl, const char *w, biref_scene_slab *out)
 {
-    static const char *const keys[] = {"center", "size", "thickness_mm", "thickness_um", "normal",  "tangent",
-                                       "axis",   "eta_o", "eta_e",       "material",     NULL};
+    static const char *const keys[] = {"center", "size",  "thickness_mm", "thickness_um", "normal", "tangent",
+                                       "axis",   "eta_o", "eta_e",        "material",     "layers", NULL};
     biref_status s = biref_field_as_object(c, sl, w);
     if (!s) s = biref_field_check_keys(c, sl, w, keys);
     if (!s) s = biref_field_get_vec(c, sl, w, "center", 1, 3, out->center);
@@ -96,6 +122,7 @@ static biref_status parse_slab(pctx *c, const cJSON *sl, const char *w, biref_sc
         field_path q = path_index(p.s, i);
         if (!(out->size[i] > 0.0)) return FAIL(c, q.s, "must be positive");
     }
+    if (cJSON_GetObjectItemCaseSensitive(sl, "layers")) return parse_stack_slab(c, sl, w, out);
     const cJSON *tmm = cJSON_GetObjectItemCaseSensitive(sl, "thickness_mm");
     const cJSON *tum = cJSON_GetObjectItemCaseSensitive(sl, "thickness_um");
     if (tmm && tum) {

@@ -81,4 +81,8 @@ biref_status biref_field_get_image_side(pctx *c, const cJSON *obj, const char *w
 biref_status biref_field_get_string(pctx *c, const cJSON *obj, const char *where, const char *key, int required,
                                     const char **out);
 
+/* A stack slab's stack (scene_validate.c): its layers in the scene's medium; BIREF_ERR_INVALID for a
+ * plain slab (n_layers 0) or a layer count out of range. */
+biref_status biref_scene_slab_stack(const biref_scene *sc, const biref_scene_slab *sl, biref_stack *out);
+
 #endif

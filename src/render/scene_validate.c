@@ -2,6 +2,7 @@
  * code alike: the cross-field checks (camera up vs view, camera inside a slab, ...) with the JSON
  * field names wherever the two coincide (docs/SCENES.md). */
 #include <math.h>
+#include <string.h>
 
 #include "biref/render.h"
 #include "render/scene_fields.h"
@@ -72,21 +73,36 @@ biref_status biref_scene_validate(const biref_scene *sc, char *msg, size_t msg_l
         if (!finite_vec(sl->center, 3)) return SLAB_FAIL("center", "must be finite");
         if (!(isfinite(sl->size[0]) && sl->size[0] > 0 && isfinite(sl->size[1]) && sl->size[1] > 0))
             return SLAB_FAIL("size", "must be positive");
-        if (!(isfinite(sl->thickness_nm) && sl->thickness_nm > 0)) return SLAB_FAIL("thickness", "must be positive");
         if (!unit_vec(sl->normal)) return SLAB_FAIL("normal", "must be a unit vector");
         if (!unit_vec(sl->tangent) || fabs(v3_dot(sl->tangent, sl->normal)) > 1e-6)
             return SLAB_FAIL("tangent", "must be a unit vector orthogonal to the normal");
-        if (!unit_vec(sl->axis)) return SLAB_FAIL("axis", "must be a unit vector");
-        /* A dispersive material is checked over the renderer's band when it is created. */
-        if (!sl->material && !(isfinite(sl->eta_o) && sl->eta_o > 0)) return SLAB_FAIL("eta_o", "must be positive");
-        if (!sl->material && !(isfinite(sl->eta_e) && sl->eta_e > 0)) return SLAB_FAIL("eta_e", "must be positive");
+        double thickness = sl->thickness_nm;
+        if (sl->n_layers != 0 && sl->material)
+            return SLAB_FAIL("material", "a stack slab (layers) takes its optics from its layers");
+        if (sl->n_layers != 0) {
+            biref_stack st;
+            char why[200];
+            if (biref_scene_slab_stack(sc, sl, &st) || biref_stack_check(&st, why, sizeof why))
+                return sl->n_layers < 1 || sl->n_layers > BIREF_STACK_MAX_LAYERS
+                           ? SLAB_FAIL("layers", "expected 1 to %d layers", BIREF_STACK_MAX_LAYERS)
+                           : FAIL(c, w.s, "%s", why);
+            thickness = 0.0;
+            for (int k = 0; k < st.n_layers; k++) thickness += st.layers[k].thickness_nm;
+        } else {
+            if (!(isfinite(sl->thickness_nm) && sl->thickness_nm > 0))
+                return SLAB_FAIL("thickness", "must be positive");
+            if (!unit_vec(sl->axis)) return SLAB_FAIL("axis", "must be a unit vector");
+            /* A dispersive material is checked over the renderer's band when it is created. */
+            if (!sl->material && !(isfinite(sl->eta_o) && sl->eta_o > 0)) return SLAB_FAIL("eta_o", "must be positive");
+            if (!sl->material && !(isfinite(sl->eta_e) && sl->eta_e > 0)) return SLAB_FAIL("eta_e", "must be positive");
+        }
         /* The camera inside a slab sees no well-defined front face. Scene units are metres,
          * so the slab occupies |distance to its mid-plane| <= d / 2 over its rectangle. */
         double rel[3], b[3];
         v3_sub(cam->position, sl->center, rel);
         v3_cross(sl->tangent, sl->normal, b);
         double dist = fabs(v3_dot(rel, sl->normal));
-        double half = fmax(0.5 * sl->thickness_nm * 1e-9, 1e-12 * fmax(1.0, v3_len(rel)));
+        double half = fmax(0.5 * thickness * 1e-9, 1e-12 * fmax(1.0, v3_len(rel)));
         if (dist <= half && fabs(v3_dot(rel, sl->tangent)) <= 0.5 * sl->size[0] &&
             fabs(v3_dot(rel, b)) <= 0.5 * sl->size[1])
             return FAIL(c, "camera.position", "inside slabs[%d]", i);
@@ -126,4 +142,13 @@ biref_status biref_scene_validate(const biref_scene *sc, char *msg, size_t msg_l
                     brightest);
 
     return biref_scene_light_check(&sc->light, msg, msg_len);
+}
+
+biref_status biref_scene_slab_stack(const biref_scene *sc, const biref_scene_slab *sl, biref_stack *out)
+{
+    if (sl->n_layers < 1 || sl->n_layers > BIREF_STACK_MAX_LAYERS) return BIREF_ERR_INVALID;
+    out->eta_i = sc->eta_medium;
+    out->n_layers = sl->n_layers;
+    memcpy(out->layers, sl->layers, (size_t)sl->n_layers * sizeof sl->layers[0]);
+    return BIREF_OK;
 }

@@ -82,7 +82,7 @@ biref_method biref_shader_method(const biref_shader *sh) { return biref_integrat
 const biref_light *biref_shader_light(const biref_shader *sh) { return &sh->light; }
 
 /* The light of one side of a hit: s is the frame's x axis for both waves, p = k x s. */
-static void side_light(const biref_shader *sh, const double x[3], const double k_in[3], const double k_out[3],
+void biref_shader_side_light(const biref_shader *sh, const double x[3], const double k_in[3], const double k_out[3],
                        biref_light *out)
 {
     double p_in[3], p_out[3];
@@ -107,8 +107,8 @@ biref_status biref_shader_eval(const biref_shader *sh, const biref_hit_frames *f
     double k_refl_in[3];
     v3_scale(f->mirror, -1.0, k_refl_in);
     biref_light lT, lR;
-    side_light(sh, f->x_T, f->k_view, f->k_view, &lT);
-    side_light(sh, f->x_R, k_refl_in, f->k_view, &lR);
+    biref_shader_side_light(sh, f->x_T, f->k_view, f->k_view, &lT);
+    biref_shader_side_light(sh, f->x_R, k_refl_in, f->k_view, &lR);
     biref_integration res;
     s = biref_integrate_footprint(sh->it, &stT, fpT, BIREF_SIDE_TRANSMISSION, &lT, &res);
     if (s != BIREF_OK) return s;
@@ -125,8 +125,8 @@ biref_status biref_shader_eval_material(const biref_shader *sh, const biref_mate
     if (sh->world_fixed) {
         double k_refl_in[3];
         v3_scale(f->mirror, -1.0, k_refl_in);
-        side_light(sh, f->x_T, f->k_view, f->k_view, &lT);
-        side_light(sh, f->x_R, k_refl_in, f->k_view, &lR);
+        biref_shader_side_light(sh, f->x_T, f->k_view, f->k_view, &lT);
+        biref_shader_side_light(sh, f->x_R, k_refl_in, f->k_view, &lR);
     }
     /* Reflection: the same slab lit from the other face, the frame rotated by 180 degrees about z
      * (axis (a, b, c) -> (-a, -b, c), as biref_slab_state_flip). */
@@ -176,7 +176,7 @@ void biref_shader_failed_hit(const biref_shader *sh, const biref_hit_frames *f, 
         double k_refl_in[3];
         v3_scale(f->mirror, -1.0, k_refl_in);
         biref_light l;
-        side_light(sh, f->x_R, k_refl_in, f->k_view, &l);
+        biref_shader_side_light(sh, f->x_R, k_refl_in, f->k_view, &l);
         f_pass = biref_light_passthrough(&l);
     }
     v3_set(T, 0, 0, 0);

@@ -32,6 +32,16 @@ void biref_shading_frames(const double normal[3], const double tangent[3], const
 biref_status biref_shader_eval(const biref_shader *sh, const biref_hit_frames *f, const biref_opl_footprint *fpT,
                                double T[3], double R[3]);
 
+/* A stack slab's hit (shade_stack.c): the frames f of the ray, the slab's unit normal and tangent
+ * and its stack with axes in that local frame, layers from the +normal face downwards. The codes of
+ * biref_integrate_stack_hit and biref_stack_prepare. */
+biref_status biref_shader_eval_stack(const biref_shader *sh, const biref_hit_frames *f, const double normal[3],
+                                     const double tangent[3], const biref_stack *local, double T[3], double R[3]);
+
+/* The light of one side of a hit in the basis s = x (both waves), p = k x s. */
+void biref_shader_side_light(const biref_shader *sh, const double x[3], const double k_in[3], const double k_out[3],
+                             biref_light *out);
+
 /* Hits in the packet kernel's form (integrator_internal.h): T, R of the hits whose scalar[k] is 0;
  * scalar[k] = 1 for the hits to evaluate with biref_shader_eval (every hit under a world-fixed
  * light). */

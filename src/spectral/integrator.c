@@ -12,14 +12,19 @@
 #include "spectral/integrator_internal.h"
 #include "spectral/phase_prefilter.h"
 #include "spectral/spectral_internal.h"
+#include "spectral/stack_internal.h"
 
 /* One side (BIREF_TRANSMISSION or BIREF_REFLECTION) of one state under one light. */
 typedef biref_status (*side_worker)(const biref_integrator *it, const biref_slab_state *st, const biref_opl_footprint *fp,
                                     int which, const biref_light *l, double xyz[3], int *order_used);
 
-/* Where the next media plug in. Today the medium at a hit is one slab of constant indices (a
- * prepared biref_slab_state) and the worker is picked per method at creation (side, hits). A
- * dispersive material (wavelength-dependent indices: numeric_dispersive.c prepares the slab per
+/* A stack of layers at a hit: one face's detected XYZ of a prepared stack under one light. */
+typedef biref_status (*stack_worker)(const biref_integrator *it, const biref_stack_state *st, int which,
+                                     const biref_light *l, double xyz[3]);
+
+/* Where the media plug in. The medium at a hit is one slab of constant indices (a prepared
+ * biref_slab_state) or a stack of layers (biref_stack_state, the stack worker), each with its
+ * worker picked per method at creation (side, hits, stack). A dispersive material (wavelength-dependent indices: numeric_dispersive.c prepares the slab per
  * sample wavelength, biref_integrate_material) and a stack of layers are further kinds of medium:
  * each gets its workers per method here, picked at creation by (method, medium kind) next to the
  * ones below, so that the per-sample call never switches on the medium and the renderer, shader
@@ -34,6 +39,7 @@ struct biref_integrator {
     side_worker side;
     biref_simd_isa isa;          /* analytic: the packet kernel's instruction set, picked at creation */
     biref_packet_hits_kernel hits; /* NULL: no packets */
+    stack_worker stack;
 };
 
 void biref_integrator_options_default(biref_integrator_options *o)
@@ -88,6 +94,31 @@ static biref_status side_expansion(const biref_integrator *it, const biref_slab_
     return s;
 }
 
+/* A stack by its closed form (docs/STACKS.md §2: the path expansion, adaptive numeric integration
+ * where it does not apply) for the analytic and expansion methods: a stack has no eq. 26. */
+static biref_status stack_closed_form(const biref_integrator *it, const biref_stack_state *st, int which,
+                                      const biref_light *l, double xyz[3])
+{
+    biref_stack_spectrum_opts o;
+    biref_stack_spectrum_opts_default(&o);
+    biref_spectrum out;
+    double m[2][3];
+    biref_status s = biref_stack_spectrum(it->sp, st, &o, l, &out, m[0], m[1], NULL, NULL, 0);
+    memcpy(xyz, m[which == BIREF_SIDE_REFLECTION], sizeof m[0]);
+    return s;
+}
+
+/* A stack by the numeric methods: the integrator's plan, exact Jones matrices per sample. */
+static biref_status stack_numeric(const biref_integrator *it, const biref_stack_state *st, int which,
+                                  const biref_light *l, double xyz[3])
+{
+    biref_spectrum out;
+    double m[2][3];
+    biref_stack_spectrum_numeric(it->plan, st, l, &out, m[0], m[1]);
+    memcpy(xyz, m[which == BIREF_SIDE_REFLECTION], sizeof m[0]);
+    return isfinite(xyz[0]) && isfinite(xyz[1]) && isfinite(xyz[2]) ? BIREF_OK : BIREF_ERR_ILLCOND;
+}
+
 static biref_status check_options(const biref_integrator_options *o, char *msg, size_t msg_len)
 {
     switch (o->method) {
@@ -131,10 +162,15 @@ biref_status biref_integrator_create(const biref_spectral *sp, const biref_integ
         it->side = side_analytic;
         it->isa = isa;
         it->hits = biref_simd_hits_kernel(isa);
+        it->stack = stack_closed_form;
         break;
-    case BIREF_METHOD_EXPANSION: it->side = side_expansion; break;
+    case BIREF_METHOD_EXPANSION:
+        it->side = side_expansion;
+        it->stack = stack_closed_form;
+        break;
     default:
         it->side = side_numeric;
+        it->stack = stack_numeric;
         s = biref_numeric_plan_create(
             sp, o->method == BIREF_METHOD_GROUND_TRUTH ? BIREF_GROUND_TRUTH_SAMPLES : o->samples, &it->plan, msg, msg_len);
         if (s != BIREF_OK) {
@@ -277,6 +313,14 @@ biref_status biref_integrate_hit(const biref_integrator *it, const biref_slab_hi
     biref_slab_state st;
     biref_status s = biref_slab_prepare_trusted(&hit->slab, hit->theta, &st);
     return s != BIREF_OK ? s : scalar_hit(it, &st, fp, light, T, R);
+}
+
+biref_status biref_integrate_stack_hit(const biref_integrator *it, const biref_stack_state *stT,
+                                       const biref_stack_state *stR, const biref_light *lT, const biref_light *lR,
+                                       double T[3], double R[3])
+{
+    biref_status s = it->stack(it, stT, BIREF_SIDE_TRANSMISSION, lT, T);
+    return s ? s : it->stack(it, stR, BIREF_SIDE_REFLECTION, lR, R);
 }
 
 const biref_numeric_plan *biref_integrator_plan(const biref_integrator *it) { return it->plan; }

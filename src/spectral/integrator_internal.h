@@ -6,6 +6,7 @@
 
 #include "biref/experimental.h" /* the library is built with BIREF_EXPERIMENTAL_API */
 #include "biref/integrator.h"
+#include "biref/stack.h"
 #include "spectral/analytic_packet.h"
 #include "spectral/phase_prefilter.h"
 
@@ -45,6 +46,15 @@ void biref_integrate_packet_hits_lit(const biref_integrator *it, const biref_pac
  * fp unless it is NULL); the outputs are undefined unless it returns BIREF_OK. */
 biref_status biref_integrate_hit(const biref_integrator *it, const biref_slab_hit *hit, const biref_opl_footprint *fp,
                                  const biref_light *light, double T[3], double R[3]);
+
+/* A stack of layers at a hit (docs/STACKS.md §5): T the transmission of stT under lT, R the
+ * reflection of stR (the same stack lit from the viewer's face, its own frame) under lR. The analytic
+ * and expansion methods integrate a stack by its path expansion (adaptive numeric integration where
+ * that does not apply), the numeric methods with their plan. Outputs undefined unless BIREF_OK;
+ * BIREF_ERR_ILLCOND for a non-finite result, BIREF_ERR_NOMEM. */
+biref_status biref_integrate_stack_hit(const biref_integrator *it, const biref_stack_state *stT,
+                                       const biref_stack_state *stR, const biref_light *lT, const biref_light *lR,
+                                       double T[3], double R[3]);
 
 /* The numeric methods' plan (NULL for the analytic and expansion methods): the dispersive
  * integration (numeric_dispersive.c) samples at its wavelengths. */

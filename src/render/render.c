@@ -179,8 +179,34 @@ static double jitter(int x, int y, int s, uint32_t salt)
     return (h >> 8) * (1.0 / 16777216.0);
 }
 
-/* Pixels x0 .. x0 + np - 1 of row y, K x K stratified jittered samples each (one through the
- * centre when K = 1), box-filtered; with the prefilter each sample's footprint is its stratum
+/* A value that is not finite or beyond float range is stored as 0 and counted. */
+static float stored(double v, long *nonfinite)
+{
+    const int ok = fabs(v) <= FLT_MAX; /* false for infinities and NaN */
+    *nonfinite += !ok;
+    return (float)(ok ? v : 0.0);
+}
+
+/* One sample per pixel, through the centres of pixels x0 .. x0 + n - 1 of row y (n <= RENDER_TILE):
+ * each sample's colour is its pixel's (the box filter of one sample). */
+static void render_centres(const biref_renderer *r, render_tile *tile, int x0, int n, int y, float *row,
+                           render_tile_counts *counts)
+{
+    tile->n = n;
+    tile->h = 1.0;
+    for (int j = 0; j < n; j++) {
+        tile->fx[j] = x0 + j + 0.5;
+        tile->fy[j] = y + 0.5;
+    }
+    biref_render_tile(r, tile, counts);
+    const double e = r->exposure;
+    for (int j = 0; j < tile->n; j++) {
+        counts->slab_pixels += tile->slab[j] >= 0.0;
+        for (int c = 0; c < 3; c++) row[3 * (size_t)(x0 + j) + c] = stored(tile->xyz[c][j] * e, &counts->nonfinite);
+    }
+}
+
+/* Pixels x0 .. x0 + np - 1 of row y, K x K stratified jittered samples each (K > 1), box-filtered; with the prefilter each sample's footprint is its stratum
  * (steps of 1/K pixel to the neighbouring samples). The samples go through tiles in pixel order
  * (a pixel's may span several tiles), so each pixel sums its samples in one order. */
 static void render_pixels(const biref_renderer *r, render_tile *tile, int x0, int np, int y, float *row,
@@ -194,33 +220,22 @@ static void render_pixels(const biref_renderer *r, render_tile *tile, int x0, in
     for (int done = 0, total = np * KK; done < total; done += tile->n) {
         tile->n = total - done < RENDER_TILE ? total - done : RENDER_TILE;
         for (int j = 0; j < tile->n; j++) {
-            if (K == 1) { /* the pixel centres, without the divisions below */
-                tile->fx[j] = x0 + j + 0.5;
-                tile->fy[j] = y + 0.5;
-                continue;
-            }
             const int q = done + j, x = x0 + q / KK, s = q % KK;
             tile->fx[j] = x + (s % K + jitter(x, y, s, 0x9e3779b9u)) * h;
             tile->fy[j] = y + (s / K + jitter(x, y, s, 0x7f4a7c15u)) * h;
         }
         biref_render_tile(r, tile, counts);
         for (int j = 0; j < tile->n; j++) {
-            const int p = K == 1 ? j : (done + j) / KK;
+            const int p = (done + j) / KK;
             for (int c = 0; c < 3; c++) acc[p][c] += tile->xyz[c][j];
             hit[p] |= tile->slab[j] >= 0.0;
         }
     }
-    /* The colours into the float image; a value that is not finite or beyond float range is
-     * stored as 0 and counted. */
     const double e = r->exposure;
     for (int p = 0; p < np; p++) {
         counts->slab_pixels += hit[p];
-        for (int c = 0; c < 3; c++) {
-            const double v = acc[p][c] / (double)KK * e;
-            const int ok = fabs(v) <= FLT_MAX; /* false for infinities and NaN */
-            counts->nonfinite += !ok;
-            row[3 * (size_t)(x0 + p) + c] = (float)(ok ? v : 0.0);
-        }
+        for (int c = 0; c < 3; c++)
+            row[3 * (size_t)(x0 + p) + c] = stored(acc[p][c] / (double)KK * e, &counts->nonfinite);
     }
 }
 
@@ -231,8 +246,13 @@ static void render_row(const biref_renderer *r, int y, float *row, render_tile_c
     const int KK = r->opt.supersample * r->opt.supersample;
     const int group = KK <= RENDER_TILE ? RENDER_TILE / KK : 1;
     render_tile tile;
-    for (int x0 = 0; x0 < r->cam.width; x0 += group)
-        render_pixels(r, &tile, x0, r->cam.width - x0 < group ? r->cam.width - x0 : group, y, row, counts);
+    for (int x0 = 0; x0 < r->cam.width; x0 += group) {
+        const int n = r->cam.width - x0 < group ? r->cam.width - x0 : group;
+        if (KK == 1)
+            render_centres(r, &tile, x0, n, y, row, counts);
+        else
+            render_pixels(r, &tile, x0, n, y, row, counts);
+    }
 }
 
 biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_end, int y_step, float *xyz,

@@ -34,7 +34,6 @@ typedef struct {
      * are run_start[i] .. run_start[i + 1] - 1. */
     int n_hits, px[RENDER_TILE], n_runs, run_slab[RENDER_TILE], run_start[RENDER_TILE + 1];
     render_lanes3 from, hdir, mirror; /* background: camera origin and ray; hits: hit point, ray, mirror */
-    render_lanes3 fx_T, fy_T, fz;     /* the hit's transmission frame (ray_frame.h) */
     render_lanes3 axis;               /* optic axis in the hit's transmission frame */
     double c[RENDER_TILE];            /* cos(theta), clamped as the frames clamp theta */
     biref_packet_hit in[RENDER_TILE]; /* the kernel's input */

@@ -12,17 +12,6 @@
 #include "spectral/numeric_jones.h"
 #include "spectral/spectral_internal.h"
 
-/* re + i im exactly, signed zeros included. CMPLX would say this, but glibc defines it only for
- * compilers that identify as GCC >= 4.7 (not clang); C17 6.2.5p13 lays a complex out as
- * double[2]. */
-static inline double complex complex_of(double re, double im)
-{
-    const double parts[2] = {re, im};
-    double complex z;
-    memcpy(&z, parts, sizeof z);
-    return z;
-}
-
 biref_status biref_numeric_plan_create(const biref_spectral *sp, int samples, biref_numeric_plan **out, char *msg,
                                        size_t msg_len)
 {
@@ -102,16 +91,7 @@ void biref_spectrum_numeric_polarized(const biref_numeric_plan *plan, const bire
         else
             biref_numeric_jones_block(st, plan->k + n0, nb, &B, NULL);
         for (int l = 0; l < nb; l++) {
-            double complex J[2][2], M[2][2];
-            for (int i = 0; i < 2; i++)
-                for (int k = 0; k < 2; k++) J[i][k] = complex_of(B.re[i][k][l], B.im[i][k][l]);
-            for (int i = 0; i < 2; i++)
-                for (int k = 0; k < 2; k++) M[i][k] = P ? J[i][0] * P[0][k] + J[i][1] * P[1][k] : J[i][k];
-            /* <|e M|^2> over the input ensemble = sum_{i,j} C[i][j] sum_k M[i][k] conj(M[j][k]). */
-            double I_det = 0.0;
-            for (int i = 0; i < 2; i++)
-                for (int j = 0; j < 2; j++)
-                    for (int k = 0; k < 2; k++) I_det += creal(C[i][j] * M[i][k] * conj(M[j][k]));
+            const double I_det = biref_numeric_block_detected(&B, l, C, P);
             for (int b = 0; b < 3; b++) xyz[b] += plan->weight[n0 + l][b] * I_det;
         }
     }

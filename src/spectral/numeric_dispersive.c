@@ -13,15 +13,6 @@
 #include "spectral/numeric_jones.h"
 #include "spectral/spectral_internal.h"
 
-/* re + i im exactly, signed zeros included (as numeric.c builds its amplitudes). */
-static inline double complex complex_of(double re, double im)
-{
-    const double parts[2] = {re, im};
-    double complex z;
-    memcpy(&z, parts, sizeof z);
-    return z;
-}
-
 /* The state at sample i. The geometry was checked by the caller; the material's indices at a
  * sample are finite and > 1 (else BIREF_ERR_INVALID), so the trusted set-up applies. */
 static biref_status state_at(const biref_numeric_plan *plan, int i, const biref_material *m, const biref_slab *geometry,
@@ -86,16 +77,7 @@ biref_status biref_spectrum_numeric_dispersive_polarized(const biref_numeric_pla
             biref_numeric_jones_block(&st, plan->k + n, 1, NULL, &B);
         else
             biref_numeric_jones_block(&st, plan->k + n, 1, &B, NULL);
-        double complex J[2][2], M[2][2];
-        for (int i = 0; i < 2; i++)
-            for (int k = 0; k < 2; k++) J[i][k] = complex_of(B.re[i][k][0], B.im[i][k][0]);
-        for (int i = 0; i < 2; i++)
-            for (int k = 0; k < 2; k++) M[i][k] = P ? J[i][0] * P[0][k] + J[i][1] * P[1][k] : J[i][k];
-        /* <|e M|^2> over the input ensemble = sum_{i,j} C[i][j] sum_k M[i][k] conj(M[j][k]). */
-        double I_det = 0.0;
-        for (int i = 0; i < 2; i++)
-            for (int j = 0; j < 2; j++)
-                for (int k = 0; k < 2; k++) I_det += creal(C[i][j] * M[i][k] * conj(M[j][k]));
+        const double I_det = biref_numeric_block_detected(&B, 0, C, P);
         for (int b = 0; b < 3; b++) xyz[b] += plan->weight[n][b] * I_det;
     }
     return BIREF_OK;

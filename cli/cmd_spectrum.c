@@ -36,16 +36,6 @@ enum {
     OPT_STOKES
 };
 
-static cJSON *xyz_pairs_json(const double X[2][2][3])
-{
-    cJSON *o = cJSON_CreateObject();
-    for (int i = 0; i < 2; i++) {
-        cJSON *row = cJSON_AddObjectToObject(o, SP[i]);
-        for (int j = 0; j < 2; j++) cJSON_AddItemToObject(row, SP[j], json_vec3(X[i][j]));
-    }
-    return o;
-}
-
 static int all_finite(const biref_spectrum *s)
 {
     for (int i = 0; i < 2; i++)
@@ -387,8 +377,8 @@ static int print_json(const spectrum_args *a, const spectrum_result *res)
         cJSON_AddNullToObject(root, "total_reflection"); /* per sample */
     else
         cJSON_AddBoolToObject(root, "total_reflection", res->st.total_reflection);
-    cJSON_AddItemToObject(root, "T", xyz_pairs_json(res->spec.T));
-    cJSON_AddItemToObject(root, "R", xyz_pairs_json(res->spec.R));
+    cJSON_AddItemToObject(root, "T", json_sp_xyz_pairs(res->spec.T));
+    cJSON_AddItemToObject(root, "R", json_sp_xyz_pairs(res->spec.R));
     cJSON *mx = cJSON_AddObjectToObject(root, "mixed");
     cJSON *pol = cJSON_AddObjectToObject(mx, "polarization");
     if (!a->general_in) {

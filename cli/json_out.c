@@ -41,6 +41,16 @@ cJSON *json_sp_cmatrix(const double complex m[2][2])
     return o;
 }
 
+cJSON *json_sp_xyz_pairs(const double X[2][2][3])
+{
+    cJSON *o = cJSON_CreateObject();
+    for (int i = 0; i < 2; i++) {
+        cJSON *row = cJSON_AddObjectToObject(o, SP[i]);
+        for (int j = 0; j < 2; j++) cJSON_AddItemToObject(row, SP[j], json_vec3(X[i][j]));
+    }
+    return o;
+}
+
 int json_print_and_free(cJSON *root)
 {
     char *text = root ? cJSON_Print(root) : NULL;

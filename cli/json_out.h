@@ -14,6 +14,8 @@ cJSON *json_cvec3(const double complex v[3]);
 cJSON *json_sp_matrix(const double m[2][2]);
 /* Same indexing, values as [re, im]. */
 cJSON *json_sp_cmatrix(const double complex m[2][2]);
+/* Same indexing, values XYZ triples: the four s/p input/output pair colours of a spectrum. */
+cJSON *json_sp_xyz_pairs(const double X[2][2][3]);
 /* A dispersive material used over [lo_nm, hi_nm]: {"name", "source", "range_nm" ([min, max], null
  * for none), "extrapolated_nm" (the parts of the band outside the range, [[a, b], ...])}. */
 cJSON *json_dispersive_material(const biref_material *m, double lo_nm, double hi_nm);

@@ -11,16 +11,6 @@
 static const char *const CMD = "spectrum";
 static const char *const SP[2] = {"s", "p"};
 
-static cJSON *pairs_json(const double X[2][2][3])
-{
-    cJSON *o = cJSON_CreateObject();
-    for (int i = 0; i < 2; i++) {
-        cJSON *row = cJSON_AddObjectToObject(o, SP[i]);
-        for (int j = 0; j < 2; j++) cJSON_AddItemToObject(row, SP[j], json_vec3(X[i][j]));
-    }
-    return o;
-}
-
 static int print_json(const spectrum_stack_args *a, const biref_stack *stack, const biref_stack_state *st,
                       const biref_spectrum *spec, const double xyz[2][3], const biref_stack_spectrum_info *info)
 {
@@ -53,8 +43,8 @@ static int print_json(const spectrum_stack_args *a, const biref_stack *stack, co
         cJSON_AddNumberToObject(g, "T", info->groups[0]);
         cJSON_AddNumberToObject(g, "R", info->groups[1]);
     }
-    cJSON_AddItemToObject(root, "T", pairs_json(spec->T));
-    cJSON_AddItemToObject(root, "R", pairs_json(spec->R));
+    cJSON_AddItemToObject(root, "T", json_sp_xyz_pairs(spec->T));
+    cJSON_AddItemToObject(root, "R", json_sp_xyz_pairs(spec->R));
     cJSON *mx = cJSON_AddObjectToObject(root, "mixed");
     cJSON *pol = cJSON_AddObjectToObject(mx, "polarization");
     cJSON_AddStringToObject(pol, "state", a->pol_name);

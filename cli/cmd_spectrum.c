@@ -263,6 +263,16 @@ static void make_light(const spectrum_args *a, biref_light *l)
     biref_light_set_analyzer(l, (const double complex(*)[2])a->P_an);
 }
 
+/* The detected colours of both sides into the result, XYZ and sRGB. */
+static void store_mixed(const biref_integration *mixed, spectrum_result *res)
+{
+    memcpy(res->T_xyz, mixed->T, sizeof res->T_xyz);
+    memcpy(res->R_xyz, mixed->R, sizeof res->R_xyz);
+    memcpy(res->order_used, mixed->order_used, sizeof res->order_used);
+    biref_xyz_to_srgb(res->T_xyz, res->T_rgb);
+    biref_xyz_to_srgb(res->R_xyz, res->R_rgb);
+}
+
 /* A dispersive slab (material.h): the numeric methods sample n(λ), the closed-form ones linearise
  * each band's phases or integrate exactly where that fails. */
 static int compute_dispersive(const spectrum_args *a, const biref_integrator *it, const biref_light *light,
@@ -276,11 +286,7 @@ static int compute_dispersive(const spectrum_args *a, const biref_integrator *it
         s = biref_integrate_material(it, a->so.material, &a->so.slab, theta, BIREF_SIDE_BOTH, light, &mixed);
     if (s == BIREF_ERR_ILLCOND) return cli_error(CMD, "numerical failure (non-finite result)"), CLI_EXIT_FAIL;
     if (s != BIREF_OK) return cli_error(CMD, "integration: %s", biref_status_string(s)), CLI_EXIT_FAIL;
-    memcpy(res->T_xyz, mixed.T, sizeof res->T_xyz);
-    memcpy(res->R_xyz, mixed.R, sizeof res->R_xyz);
-    memcpy(res->order_used, mixed.order_used, sizeof res->order_used);
-    biref_xyz_to_srgb(res->T_xyz, res->T_rgb);
-    biref_xyz_to_srgb(res->R_xyz, res->R_rgb);
+    store_mixed(&mixed, res);
     return CLI_EXIT_OK;
 }
 
@@ -330,11 +336,7 @@ static int compute(const spectrum_args *a, spectrum_result *res)
         return cli_error(CMD, "expansion: %s", biref_status_string(s != BIREF_OK ? s : sm)), CLI_EXIT_FAIL;
     if (sm != BIREF_OK || !all_finite(&res->spec))
         return cli_error(CMD, "numerical failure (non-finite result)"), CLI_EXIT_FAIL;
-    memcpy(res->T_xyz, mixed.T, sizeof res->T_xyz);
-    memcpy(res->R_xyz, mixed.R, sizeof res->R_xyz);
-    memcpy(res->order_used, mixed.order_used, sizeof res->order_used);
-    biref_xyz_to_srgb(res->T_xyz, res->T_rgb);
-    biref_xyz_to_srgb(res->R_xyz, res->R_rgb);
+    store_mixed(&mixed, res);
     return CLI_EXIT_OK;
 }
 

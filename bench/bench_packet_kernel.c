@@ -28,7 +28,7 @@ enum { HITS = 4096 };
 typedef struct {
     const biref_spectral *sp;
     biref_packet_hits_kernel kernel;
-    const biref_packet_hit *hits;
+    const biref_packet_hits *hits;
     const biref_opl_footprint *fp;
     double (*T)[3], (*R)[3];
     unsigned char *scalar;
@@ -71,7 +71,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench_packet_kernel: set-up failed\n");
         return 1;
     }
-    static biref_packet_hit hits[HITS];
+    static double hits[BIREF_PACKET_HIT_FIELDS][HITS];
     static biref_opl_footprint fp[HITS];
     static double T[HITS][3], R[HITS][3];
     static unsigned char scalar[HITS];
@@ -79,8 +79,9 @@ int main(int argc, char **argv)
     for (int k = 0; k < HITS; k++) {
         const double phi = 2.0 * M_PI * k / HITS, theta = 0.2 + 0.6 * k / HITS;
         const double c = cos(phi) / len, s = sin(phi) / len;
-        hits[k] = (biref_packet_hit){1.40, 1.38, {axis[0] * c - axis[1] * s, axis[1] * c + axis[0] * s, axis[2] / len},
-                                     thickness, 1.0, sin(theta)};
+        const biref_packet_hit h = {1.40, 1.38, {axis[0] * c - axis[1] * s, axis[1] * c + axis[0] * s, axis[2] / len},
+                                    thickness, 1.0, sin(theta)};
+        biref_packet_hit_put(&hits[0][0], HITS, (size_t)k, &h);
         fp[k].pf = pf;
         for (int leg = 0; leg < 4; leg++) /* a fringe's worth of path across the pixel */
             fp[k].grad[leg][0] = fp[k].grad[leg][1] = (leg & 1 ? 260.0 : 250.0) * thickness / 1.25e6;
@@ -88,7 +89,8 @@ int main(int argc, char **argv)
     printf("packet kernel, %d fig9a-like hits, %.4g nm slab%s\n", HITS, thickness, prefilter ? ", prefiltered" : "");
     for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
         if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
-        kernel_case c = {sp, biref_simd_hits_kernel((biref_simd_isa)isa), hits, prefilter ? fp : NULL, T, R, scalar};
+        const biref_packet_hits in = {&hits[0][0], HITS};
+        kernel_case c = {sp, biref_simd_hits_kernel((biref_simd_isa)isa), &in, prefilter ? fp : NULL, T, R, scalar};
         bench_result r = bench_measure(run_kernel, &c, min_time, runs, 0);
         int declined = 0;
         for (int k = 0; k < HITS; k++) declined += scalar[k];

@@ -100,6 +100,14 @@ static void unknown_simd_value_is_refused(void)
     biref_spectral_destroy(sp);
 }
 
+/* The hits as the kernel reads them (biref_packet_hits: field by field) in buf, which holds
+ * BIREF_PACKET_HIT_FIELDS * n doubles. */
+static biref_packet_hits columns(const biref_packet_hit *h, size_t n, double *buf)
+{
+    for (size_t k = 0; k < n; k++) biref_packet_hit_put(buf, n, k, &h[k]);
+    return (biref_packet_hits){buf, n};
+}
+
 /* The kernels that prepare the hits themselves, against biref_slab_prepare_trusted and
  * biref_analytic_mixed of the state (transmission) and of its flip (reflection). A hit the kernel
  * takes must be one the scalar path would give it (biref_packet_eligible). */
@@ -109,6 +117,7 @@ static void test_hit_kernels_vs_scalar(void)
     CHECK(biref_spectral_create(NULL, &sp, NULL, 0) == BIREF_OK);
     enum { N = 1001 };
     static biref_packet_hit hits[N];
+    static double cols[BIREF_PACKET_HIT_FIELDS * N];
     static biref_slab_state states[N];
     static double wantT[N][3], wantR[N][3], T[N][3], R[N][3];
     static unsigned char scalar[N];
@@ -133,9 +142,10 @@ static void test_hit_kernels_vs_scalar(void)
         }
         n++;
     }
+    const biref_packet_hits H = columns(hits, n, cols);
     for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
         if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
-        biref_simd_hits_kernel((biref_simd_isa)isa)(sp, w_in, mask, hits, n, T, R, scalar, NULL, NULL);
+        biref_simd_hits_kernel((biref_simd_isa)isa)(sp, w_in, mask, &H, n, T, R, scalar, NULL, NULL);
         double worst = 0.0;
         int taken = 0, declined = 0;
         for (size_t k = 0; k < n; k++) {
@@ -183,6 +193,7 @@ static void prefiltered_hit_kernels_vs_scalar(void)
     CHECK(biref_integrator_create(sp, &io, &it, NULL, 0) == BIREF_OK);
     enum { N = 603 };
     static biref_packet_hit hits[N];
+    static double cols[BIREF_PACKET_HIT_FIELDS * N];
     static biref_slab_state states[N];
     static biref_opl_footprint fps[N];
     static double wantT[N][3], wantR[N][3], plainT[N][3], T[N][3], R[N][3];
@@ -218,9 +229,10 @@ static void prefiltered_hit_kernels_vs_scalar(void)
     for (size_t k = 0; k < n; k++)
         for (int b = 0; b < 3; b++) moved = fmax(moved, fabs(wantT[k][b] - plainT[k][b]));
     CHECK(moved > 0.05);
+    const biref_packet_hits H = columns(hits, n, cols);
     for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
         if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
-        biref_simd_hits_kernel((biref_simd_isa)isa)(sp, w_in, mask, hits, n, T, R, scalar, fps, NULL);
+        biref_simd_hits_kernel((biref_simd_isa)isa)(sp, w_in, mask, &H, n, T, R, scalar, fps, NULL);
         double worst = 0.0;
         int taken = 0;
         for (size_t k = 0; k < n; k++) {
@@ -354,6 +366,7 @@ static void general_light_hit_kernels_vs_scalar(void)
     CHECK(biref_phase_prefilter_create(sp, &pf) == BIREF_OK);
     enum { N = 301 };
     static biref_packet_hit hits[N];
+    static double cols[BIREF_PACKET_HIT_FIELDS * N];
     static biref_packet_hit_light lights[N];
     static biref_opl_footprint fps[N];
     static double want[2][N][2][3], T[N][3], R[N][3];
@@ -385,10 +398,11 @@ static void general_light_hit_kernels_vs_scalar(void)
         }
         n++;
     }
+    const biref_packet_hits H = columns(hits, n, cols);
     for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
         if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
         for (int f = 0; f < 2; f++) {
-            biref_simd_hits_kernel((biref_simd_isa)isa)(sp, NULL, NULL, hits, n, T, R, scalar, f ? fps : NULL, lights);
+            biref_simd_hits_kernel((biref_simd_isa)isa)(sp, NULL, NULL, &H, n, T, R, scalar, f ? fps : NULL, lights);
             double worst = 0.0;
             int taken = 0;
             for (size_t k = 0; k < n; k++) {
@@ -408,7 +422,7 @@ static void general_light_hit_kernels_vs_scalar(void)
     biref_integrator_options_default(&o);
     biref_integrator *it = NULL;
     CHECK(biref_integrator_create(sp, &o, &it, NULL, 0) == BIREF_OK);
-    biref_integrate_packet_hits_lit(it, hits, NULL, n, lights, T, R, scalar);
+    biref_integrate_packet_hits_lit(it, &H, NULL, n, lights, T, R, scalar);
     int taken = 0;
     for (size_t k = 0; k < n; k++)
         if (!scalar[k]) {
@@ -419,7 +433,7 @@ static void general_light_hit_kernels_vs_scalar(void)
     biref_integrator_destroy(it);
     o.method = BIREF_METHOD_EXPANSION;
     CHECK(biref_integrator_create(sp, &o, &it, NULL, 0) == BIREF_OK);
-    biref_integrate_packet_hits_lit(it, hits, NULL, n, lights, T, R, scalar);
+    biref_integrate_packet_hits_lit(it, &H, NULL, n, lights, T, R, scalar);
     for (size_t k = 0; k < n; k++) CHECK(scalar[k] == 1);
     biref_integrator_destroy(it);
     biref_phase_prefilter_destroy(pf);

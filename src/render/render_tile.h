@@ -35,10 +35,11 @@ typedef struct {
      * are run_start[i] .. run_start[i + 1] - 1. */
     int n_hits, px[RENDER_TILE], n_runs, run_slab[RENDER_TILE], run_start[RENDER_TILE + 1];
     render_lanes3 from, hdir, mirror; /* background: camera origin and ray; hits: hit point, ray, mirror */
-    render_lanes3 axis;               /* optic axis in the hit's transmission frame */
     render_lanes3 x;                  /* the transmission frame's x axis (s of both waves) */
     double c[RENDER_TILE];            /* cos(theta), clamped as the frames clamp theta */
-    biref_packet_hit in[RENDER_TILE]; /* the kernel's input */
+    /* The kernel's input, field by field (biref_packet_hits): the slab's constants, the optic axis in
+     * the hit's transmission frame and K. */
+    double in[BIREF_PACKET_HIT_FIELDS][RENDER_TILE];
     biref_packet_hit_light light[RENDER_TILE]; /* each hit's light, when the shader's is resolved per hit */
     double T[RENDER_TILE][3], R[RENDER_TILE][3];
     unsigned char scalar[RENDER_TILE];

@@ -13,7 +13,7 @@ static biref_status shade_chunk(const biref_shader *sh, size_t n, const biref_su
                                 const double (*view_dirs)[3], double (*T)[3], double (*R)[3], biref_status *status)
 {
     biref_hit_frames fr[CHUNK];
-    biref_packet_hit in[CHUNK];
+    double in[BIREF_PACKET_HIT_FIELDS][CHUNK];
     biref_packet_hit_light lights[CHUNK];
     const biref_packet_light_source *ls = biref_shader_packet_light(sh);
     biref_status st[CHUNK];
@@ -24,8 +24,9 @@ static biref_status shade_chunk(const biref_shader *sh, size_t n, const biref_su
         if (st[k] == BIREF_OK) st[k] = biref_slab_check(&fr[k].slab, NULL, 0);
         if (st[k] != BIREF_OK) continue;
         const biref_slab *b = &fr[k].slab;
-        in[m] = (biref_packet_hit){b->eta_o, b->eta_e, {b->axis[0], b->axis[1], b->axis[2]}, b->thickness_nm,
-                                   b->eta_i, b->eta_i * sin(fr[k].theta)};
+        const biref_packet_hit h = {b->eta_o,       b->eta_e, {b->axis[0], b->axis[1], b->axis[2]},
+                                    b->thickness_nm, b->eta_i, b->eta_i * sin(fr[k].theta)};
+        biref_packet_hit_put(&in[0][0], CHUNK, m, &h);
         if (ls) {
             const double d[3] = {-fr[k].k_view[0], -fr[k].k_view[1], -fr[k].k_view[2]};
             biref_packet_light_of(ls, fr[k].x_T, d, fr[k].mirror, &lights[m]);
@@ -33,7 +34,8 @@ static biref_status shade_chunk(const biref_shader *sh, size_t n, const biref_su
         idx[m++] = k;
     }
     double pT[CHUNK][3], pR[CHUNK][3];
-    biref_shader_packet(sh, in, ls ? lights : NULL, NULL, m, pT, pR, scalar);
+    const biref_packet_hits hits = {&in[0][0], CHUNK};
+    biref_shader_packet(sh, &hits, ls ? lights : NULL, NULL, m, pT, pR, scalar);
     for (size_t j = 0; j < m; j++) {
         const size_t k = idx[j];
         if (scalar[j]) {

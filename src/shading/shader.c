@@ -170,7 +170,7 @@ const biref_packet_light_source *biref_shader_packet_light(const biref_shader *s
     return sh->packet_lit ? &sh->packet_light : NULL;
 }
 
-void biref_shader_packet(const biref_shader *sh, const biref_packet_hit *hits, const biref_packet_hit_light *lights,
+void biref_shader_packet(const biref_shader *sh, const biref_packet_hits *hits, const biref_packet_hit_light *lights,
                          const biref_opl_footprint *fp, size_t n, double (*T)[3], double (*R)[3],
                          unsigned char *scalar)
 {

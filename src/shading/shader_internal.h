@@ -57,7 +57,7 @@ const biref_packet_light_source *biref_shader_packet_light(const biref_shader *s
  * scalar[k] = 1 for the hits to evaluate with biref_shader_eval. lights: each hit's light from
  * biref_packet_light_of with biref_shader_packet_light's source (NULL when that is NULL); without
  * them a light outside the paper's model sends every hit one by one. */
-void biref_shader_packet(const biref_shader *sh, const biref_packet_hit *hits, const biref_packet_hit_light *lights,
+void biref_shader_packet(const biref_shader *sh, const biref_packet_hits *hits, const biref_packet_hit_light *lights,
                          const biref_opl_footprint *fp, size_t n, double (*T)[3], double (*R)[3],
                          unsigned char *scalar);
 

@@ -31,6 +31,24 @@ typedef struct {
     double eta_o, eta_e, axis[3], thickness_nm, eta_i, K;
 } biref_packet_hit;
 
+/* The kernel's input: hits as structure of arrays, so that a packet's field is one vector load
+ * (no transposition; the renderer's tiles fill the columns in their loops across hits). Field f of
+ * hit k is v[f * stride + k], the fields in biref_packet_hit's order (eta_o, eta_e, axis x, y, z,
+ * thickness_nm, eta_i, K). */
+enum { BIREF_PACKET_HIT_FIELDS = 8 };
+typedef struct {
+    const double *v;
+    size_t stride;
+} biref_packet_hits;
+
+/* Hit k of the columns v (stride values each) set from h. */
+static inline void biref_packet_hit_put(double *v, size_t stride, size_t k, const biref_packet_hit *h)
+{
+    const double f[BIREF_PACKET_HIT_FIELDS] = {h->eta_o,        h->eta_e, h->axis[0], h->axis[1],
+                                               h->axis[2],      h->thickness_nm, h->eta_i, h->K};
+    for (int i = 0; i < BIREF_PACKET_HIT_FIELDS; i++) v[(size_t)i * stride + k] = f[i];
+}
+
 /* A hit's light outside the paper's model, in the kernel's form: a real incident coherency
  * (C00, C01, C11) in the s/p basis of the incident wave and a real analyzer (P00, P01, P10, P11),
  * [in][out], in the s/p basis of the outgoing wave, for the hit's transmission (T: its state) and
@@ -53,20 +71,20 @@ typedef struct {
  * lights: NULL for the paper's light (w_in, mask) on every hit, else one light per hit (w_in and
  * mask unused): the general terms (analytic_general.c) with the phase integrals as above. */
 typedef void (*biref_packet_hits_kernel)(const biref_spectral *sp, const double w_in[2], const double mask[2],
-                                         const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
+                                         const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3],
                                          unsigned char *scalar, const biref_opl_footprint *fp,
                                          const biref_packet_hit_light *lights);
 
 void biref_packet_hits_baseline(const biref_spectral *sp, const double w_in[2], const double mask[2],
-                                const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
+                                const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3],
                                 unsigned char *scalar, const biref_opl_footprint *fp,
                                 const biref_packet_hit_light *lights);
 void biref_packet_hits_avx2(const biref_spectral *sp, const double w_in[2], const double mask[2],
-                            const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
+                            const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3],
                             unsigned char *scalar, const biref_opl_footprint *fp,
                                 const biref_packet_hit_light *lights);
 void biref_packet_hits_avx512(const biref_spectral *sp, const double w_in[2], const double mask[2],
-                              const biref_packet_hit *hits, size_t n, double (*T)[3], double (*R)[3],
+                              const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3],
                               unsigned char *scalar, const biref_opl_footprint *fp,
                                 const biref_packet_hit_light *lights);
 

@@ -287,7 +287,7 @@ static int one_prefilter(const biref_opl_footprint *fp, size_t n)
     return 1;
 }
 
-void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_hit *hits,
+void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_hits *hits,
                                  const biref_opl_footprint *fp, size_t n, const biref_light *light, double (*T)[3],
                                  double (*R)[3], unsigned char *scalar)
 {
@@ -297,7 +297,7 @@ void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_
         memset(scalar, 1, n);
 }
 
-void biref_integrate_packet_hits_lit(const biref_integrator *it, const biref_packet_hit *hits,
+void biref_integrate_packet_hits_lit(const biref_integrator *it, const biref_packet_hits *hits,
                                      const biref_opl_footprint *fp, size_t n, const biref_packet_hit_light *lights,
                                      double (*T)[3], double (*R)[3], unsigned char *scalar)
 {

@@ -26,7 +26,7 @@ typedef struct {
  * prefilter, docs/PHYSICS.md §6): transmission over fp[k], reflection over its flip, as
  * biref_integrate_footprint gives them. The kernel takes the hits when all footprints are of one
  * prefilter (else every scalar[k] = 1). */
-void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_hit *hits,
+void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_hits *hits,
                                  const biref_opl_footprint *fp, size_t n, const biref_light *light, double (*T)[3],
                                  double (*R)[3], unsigned char *scalar);
 
@@ -38,7 +38,7 @@ void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_
  * hits whose scalar[k] is 0; scalar[k] = 1 as above (every hit when the integrator is not the
  * analytic method's or the footprints are not of one prefilter). A light with complex entries
  * (circular polarisation) has no packet form: shade it the scalar way. */
-void biref_integrate_packet_hits_lit(const biref_integrator *it, const biref_packet_hit *hits,
+void biref_integrate_packet_hits_lit(const biref_integrator *it, const biref_packet_hits *hits,
                                      const biref_opl_footprint *fp, size_t n, const biref_packet_hit_light *lights,
                                      double (*T)[3], double (*R)[3], unsigned char *scalar);
 

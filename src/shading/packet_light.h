@@ -15,13 +15,14 @@
 
 #include "spectral/analytic_packet.h"
 
-/* A real light in the kernel's form: its fixed coherency (C00, C01, C11) and analyzer [in][out]
- * (P00, P01, P10, P11; the identity without analyzer), replaced per hit where a world-fixed
- * polarizer (polarizer != 0, unit axis pol) or analyzer (analyzer != 0, unit axis ana) is set. */
+/* A light in the kernel's form: its fixed coherency (C00, C01, C11 real parts; Ci = Im C01) and
+ * analyzer [in][out] (P00, P01, P10, P11, real parts, and their imaginary parts Pi; the identity
+ * without analyzer), replaced per hit where a world-fixed polarizer (polarizer != 0, unit axis pol)
+ * or analyzer (analyzer != 0, unit axis ana) is set. */
 typedef struct {
     int polarizer, analyzer;
     double pol[3], ana[3];
-    double C[3], P[4];
+    double C[3], P[4], Ci, Pi[4];
 } biref_packet_light_source;
 
 static inline void biref_packet_light_of(const biref_packet_light_source *L, const double x[3], const double d[3],
@@ -45,11 +46,14 @@ static inline void biref_packet_light_of(const biref_packet_light_source *L, con
     out->R.C[0] = pol ? eR[0] * eR[0] : L->C[0];
     out->R.C[1] = pol ? eR[0] * eR[1] : L->C[1];
     out->R.C[2] = pol ? eR[1] * eR[1] : L->C[2];
+    out->T.Ci = out->R.Ci = pol ? 0.0 : L->Ci;
     for (int i = 0; i < 2; i++)
         for (int j = 0; j < 2; j++) {
-            const double p = ana ? t[i] * u[j] : L->P[2 * i + j];
+            const double p = ana ? t[i] * u[j] : L->P[2 * i + j], pi = ana ? 0.0 : L->Pi[2 * i + j];
             out->T.P[2 * i + j] = p;
             out->R.P[2 * i + j] = p;
+            out->T.Pi[2 * i + j] = pi;
+            out->R.Pi[2 * i + j] = pi;
         }
 }
 

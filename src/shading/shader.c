@@ -41,26 +41,28 @@ static biref_status probe(const biref_integrator *it, const biref_light *l, char
                       (unsigned)m < 4 ? names[m] : "chosen");
 }
 
-/* The light's packet form (packet_light.h) when its fixed matrices are real; 0 otherwise. */
+/* The light's packet form (packet_light.h) when its coherency is Hermitian (the kernel's form
+ * keeps C01 and takes C10 as its conjugate); 0 otherwise. */
 static int packet_source(const biref_light *l, biref_packet_light_source *out)
 {
     static const double complex ID[2][2] = {{1, 0}, {0, 1}};
     const double complex(*P)[2] = l->has_analyzer ? (const double complex(*)[2])l->P : ID;
-    int real = 1;
+    const int hermitian = l->world_polarizer || (cimag(l->C[0][0]) == 0.0 && cimag(l->C[1][1]) == 0.0 &&
+                                                 l->C[1][0] == conj(l->C[0][1]));
     for (int i = 0; i < 2; i++)
         for (int j = 0; j < 2; j++) {
-            real &= l->world_polarizer || (cimag(l->C[i][j]) == 0.0 && creal(l->C[i][j]) == creal(l->C[j][i]));
-            real &= l->world_analyzer || cimag(P[i][j]) == 0.0;
             out->P[2 * i + j] = creal(P[i][j]);
+            out->Pi[2 * i + j] = cimag(P[i][j]);
         }
     out->C[0] = creal(l->C[0][0]);
     out->C[1] = creal(l->C[0][1]);
     out->C[2] = creal(l->C[1][1]);
+    out->Ci = cimag(l->C[0][1]);
     out->polarizer = l->world_polarizer;
     out->analyzer = l->world_analyzer;
     memcpy(out->pol, l->polarizer_axis, sizeof out->pol);
     memcpy(out->ana, l->analyzer_axis, sizeof out->ana);
-    return real;
+    return hermitian;
 }
 
 biref_status biref_shader_create(const biref_spectral *sp, const biref_integrator_options *opt,
@@ -179,7 +181,7 @@ void biref_shader_packet(const biref_shader *sh, const biref_packet_hits *hits, 
     else if (sh->packet_lit && lights)
         biref_integrate_packet_hits_lit(sh->it, hits, fp, n, lights, T, R, scalar);
     else
-        memset(scalar, 1, n); /* no real per-hit form: one by one */
+        memset(scalar, 1, n); /* no per-hit form: one by one */
 }
 
 double biref_shader_background(const biref_shader *sh, const double k[3], const double normal[3],

@@ -20,9 +20,9 @@ struct biref_shader {
     biref_light light;
     int world_fixed;    /* the light has a world-fixed polarizer or analyzer */
     double passthrough; /* not world-fixed: what the light passes with no slab, the same for every ray */
-    /* A light outside the paper's s/p model with real matrices (world-fixed linear polarizers,
-     * linear Stokes light and analyzers) in the packet kernel's form, resolved per hit
-     * (packet_light.h); packet_lit 0 when the light is the paper's or has complex matrices. */
+    /* A light outside the paper's s/p model (world-fixed linear polarizers, Stokes light, linear
+     * and circular analyzers) in the packet kernel's form, resolved per hit (packet_light.h);
+     * packet_lit 0 when the light is the paper's (or its coherency is not Hermitian). */
     int packet_lit;
     biref_packet_light_source packet_light;
 };
@@ -49,8 +49,8 @@ void biref_shader_side_light(const biref_shader *sh, const double x[3], const do
                              biref_light *out);
 
 /* The shader's light per hit in the packet kernel's form (packet_light.h), or NULL when the hits need
- * none (the paper's s/p light, the same for every hit) or the light has no real form (circular
- * light or analyzers: those hits go one by one). */
+ * none (the paper's s/p light, the same for every hit) or has no such form (a coherency that is not
+ * Hermitian: those hits go one by one). */
 const biref_packet_light_source *biref_shader_packet_light(const biref_shader *sh);
 
 /* Hits in the packet kernel's form (integrator_internal.h): T, R of the hits whose scalar[k] is 0;

@@ -49,13 +49,14 @@ static inline void biref_packet_hit_put(double *v, size_t stride, size_t k, cons
     for (int i = 0; i < BIREF_PACKET_HIT_FIELDS; i++) v[(size_t)i * stride + k] = f[i];
 }
 
-/* A hit's light outside the paper's model, in the kernel's form: a real incident coherency
- * (C00, C01, C11) in the s/p basis of the incident wave and a real analyzer (P00, P01, P10, P11),
- * [in][out], in the s/p basis of the outgoing wave, for the hit's transmission (T: its state) and
- * its reflection (R: the flipped state): e.g. a world-fixed linear polarizer and analyzer
- * resolved in the hit's two frames. */
+/* A hit's light outside the paper's model, in the kernel's form: an incident coherency (Hermitian:
+ * C00, C11 and the real part of C01 in C, the imaginary part of C01 in Ci; C10 = conj C01) in the
+ * s/p basis of the incident wave and an analyzer (P00, P01, P10, P11, [in][out]: real parts in P,
+ * imaginary parts in Pi) in the s/p basis of the outgoing wave, for the hit's transmission (T: its
+ * state) and its reflection (R: the flipped state): e.g. a world-fixed linear polarizer and
+ * analyzer resolved in the hit's two frames (Ci, Pi 0), or circular light and analyzers. */
 typedef struct {
-    double C[3], P[4];
+    double C[3], P[4], Ci, Pi[4];
 } biref_packet_light;
 typedef struct {
     biref_packet_light T, R;
@@ -69,7 +70,9 @@ typedef struct {
  * same non-NULL table): every phase integral is then its box average over the hit's footprint,
  * as biref_integrate_footprint gives it (transmission with fp[k], reflection with its flip).
  * lights: NULL for the paper's light (w_in, mask) on every hit, else one light per hit (w_in and
- * mask unused): the general terms (analytic_general.c) with the phase integrals as above. */
+ * mask unused): the general terms (analytic_general.c) with the phase integrals as above; a packet
+ * with a complex light (Ci or Pi not 0) needs S(sin kD) too, which only the point look-ups give:
+ * with fp, its hits are marked scalar. */
 typedef void (*biref_packet_hits_kernel)(const biref_spectral *sp, const double w_in[2], const double mask[2],
                                          const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3],
                                          unsigned char *scalar, const biref_opl_footprint *fp,

@@ -31,13 +31,14 @@ void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_
                                  double (*R)[3], unsigned char *scalar);
 
 /* The same door for a light outside the paper's model, one per hit (world-fixed polarizers: the
- * renderer resolves its light in each hit's two frames, biref_light_at, and hands the real
- * coherency and analyzer over as lights[k].T for the transmission and lights[k].R for the
- * reflection of the flipped state). T[k], R[k] equal biref_integrate_hit's under those lights
+ * renderer resolves its light in each hit's two frames, biref_light_at, and hands the coherency
+ * and analyzer over as lights[k].T for the transmission and lights[k].R for the reflection of the
+ * flipped state). T[k], R[k] equal biref_integrate_hit's under those lights
  * (biref_light_coherency + biref_light_set_analyzer of the same matrices) to rounding, for the
  * hits whose scalar[k] is 0; scalar[k] = 1 as above (every hit when the integrator is not the
  * analytic method's or the footprints are not of one prefilter). A light with complex entries
- * (circular polarisation) has no packet form: shade it the scalar way. */
+ * (circular polarisation) takes point look-ups only: with footprints its packets are marked for
+ * the scalar way. */
 void biref_integrate_packet_hits_lit(const biref_integrator *it, const biref_packet_hits *hits,
                                      const biref_opl_footprint *fp, size_t n, const biref_packet_hit_light *lights,
                                      double (*T)[3], double (*R)[3], unsigned char *scalar);

@@ -133,7 +133,7 @@ int cli_mpi_abort(int rc)
     /* Rank 0 printed its line already; another rank's stderr stream is /dev/null. */
     if (g.rank > 0 && g.line[0]) dprintf(STDERR_FILENO, "%s\n", g.line);
     fflush(stdout);
-    MPI_Abort(MPI_COMM_WORLD, rc ? rc : 1);
+    MPI_Abort(MPI_COMM_WORLD, rc > 0 ? rc : 1);
     return rc; /* not reached */
 }
 

@@ -196,7 +196,7 @@ static biref_stack film_stack(const patch *p)
     s.n_layers = p->n;
     for (int k = 0; k < p->n; k++) {
         const double t = p->deg[k] * M_PI / 180;
-        s.layers[k] = (biref_layer){FILM_O, FILM_E, {cos(t), 0.0, sin(t)}, FILM_NM[p->film[k]], 0};
+        s.layers[k] = (biref_layer){FILM_O, FILM_E, {cos(t), 0.0, sin(t)}, FILM_NM[p->film[k]], 0, NULL};
     }
     return s;
 }

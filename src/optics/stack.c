@@ -71,7 +71,7 @@ void biref_stack_from_slab(const biref_slab *slab, biref_stack *out)
 
 int biref_stack_dispersive(const biref_stack *stack)
 {
-    for (int i = 0; i < stack->n_layers; i++)
+    for (int i = 0; i < stack->n_layers && i < BIREF_STACK_MAX_LAYERS; i++)
         if (stack->layers[i].material) return 1;
     return 0;
 }

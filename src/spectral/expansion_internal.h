@@ -47,22 +47,16 @@ typedef struct {
     double near_c[3][3][3], near_s[3][3][3];
 } phase_cache;
 
-static inline void cache_init_paths(phase_cache *pc, const biref_spectral *sp, const double complex od[2],
-                                    const double complex ou[2], const biref_opl_footprint *fp)
+static inline void cache_init(phase_cache *pc, const biref_spectral *sp, const biref_slab_state *st,
+                       const biref_opl_footprint *fp)
 {
     pc->sp = sp;
     pc->fp = fp;
-    pc->A = creal(od[0] + ou[0]);
-    pc->B = creal(od[1] - od[0]);
-    pc->C = creal(ou[1] - ou[0]);
+    pc->A = creal(st->opl_down[0] + st->opl_up[0]);
+    pc->B = creal(st->opl_down[1] - st->opl_down[0]);
+    pc->C = creal(st->opl_up[1] - st->opl_up[0]);
     pc->hash_ready = 0;
     memset(pc->near_have, 0, sizeof pc->near_have);
-}
-
-static inline void cache_init(phase_cache *pc, const biref_spectral *sp, const biref_slab_state *st,
-                              const biref_opl_footprint *fp)
-{
-    cache_init_paths(pc, sp, st->opl_down, st->opl_up, fp);
 }
 
 static inline double lag_opd(const phase_cache *pc, int dm, int dde, int due)
@@ -182,8 +176,6 @@ void biref_xp_pair_sums(phase_cache *pc, const path_group *g, int G, int Gp, con
 void biref_xp_tail_setup(const biref_spectral *sp, const biref_slab_state *st, int which, const quad_form *forms,
                          int nf, tail_model *tm);
 void biref_xp_tail_energy(const tail_model *tm, int k, int order, double out[3]);
-void biref_xp_coherences(phase_cache *pc, const double complex od[2], const double complex ou[2], double *intra,
-                         double *cross);
 expansion_orders biref_xp_choose_orders(phase_cache *pc, const biref_slab_state *st, const tail_model *tm, int nf,
                                         const biref_expansion_opts *o);
 

@@ -45,10 +45,4 @@ void biref_expansion_hits_avx512(const biref_spectral *sp, const biref_expansion
 /* The kernel of an instruction set (NULL for BIREF_SIMD_SCALAR). */
 biref_expansion_hits_kernel biref_simd_expansion_kernel(biref_simd_isa isa);
 
-/* The order choice's band coherences of one lane, the scalar way (expansion_tail.c): the largest
- * |S| at the birefringent lags of one order and |S| at the shortest round trip, for a state of
- * real leg paths od (down o, e) and ou (up o, e), over the footprint fp (NULL: point values). */
-void biref_xp_lane_coherences(const biref_spectral *sp, const biref_opl_footprint *fp, const double od[2],
-                              const double ou[2], double *intra, double *cross);
-
 #endif

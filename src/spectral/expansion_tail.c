@@ -74,32 +74,6 @@ void biref_xp_tail_energy(const tail_model *tm, int k, int order, double out[3])
     if (tm->bands == 1) out[1] = out[2] = out[0];
 }
 
-/* The band coherences the order choice weighs the tail with: within an order, the largest at the
- * birefringent lags B, C, B + C, B - C; between orders, at the shortest round trip. */
-void biref_xp_coherences(phase_cache *pc, const double complex od[2], const double complex ou[2], double *intra,
-                         double *cross)
-{
-    double d_rt = INFINITY;
-    int rx = 0, ry = 0;
-    for (int x = 0; x < 2; x++)
-        for (int y = 0; y < 2; y++)
-            if (creal(od[x] + ou[y]) < d_rt) d_rt = creal(od[x] + ou[y]), rx = x, ry = y;
-    *cross = band_coherence(pc, 1, rx, ry);
-    /* Degenerate legs (B = C) make this 1: merged groups differ by whole e legs, and the bound
-     * must count the interference between them. */
-    *intra = dmax2(dmax2(band_coherence(pc, 0, 1, 0), band_coherence(pc, 0, 0, 1)),
-                   dmax2(band_coherence(pc, 0, 1, 1), band_coherence(pc, 0, 1, -1)));
-}
-
-void biref_xp_lane_coherences(const biref_spectral *sp, const biref_opl_footprint *fp, const double od[2],
-                              const double ou[2], double *intra, double *cross)
-{
-    const double complex d[2] = {od[0], od[1]}, u[2] = {ou[0], ou[1]};
-    phase_cache pc;
-    cache_init_paths(&pc, sp, d, u, fp);
-    biref_xp_coherences(&pc, d, u, intra, cross);
-}
-
 /* Each order is the smallest whose truncation error is below tol (relative to the energy of
  * the orders the expansion covers, per form and band):
  *  - groups: the incoherent tail ignores the coherence inside the groups beyond the order, an
@@ -120,8 +94,17 @@ expansion_orders biref_xp_choose_orders(phase_cache *pc, const biref_slab_state 
         return (expansion_orders){n, n};
     }
     int cap = o->max_order < 1 ? 1 : (o->max_order > EXP_MAX_ORDER ? EXP_MAX_ORDER : o->max_order);
-    double coh_intra, coh_cross;
-    biref_xp_coherences(pc, st->opl_down, st->opl_up, &coh_intra, &coh_cross);
+    const double complex *od = st->opl_down, *ou = st->opl_up;
+    double d_rt = INFINITY;
+    int rx = 0, ry = 0;
+    for (int x = 0; x < 2; x++)
+        for (int y = 0; y < 2; y++)
+            if (creal(od[x] + ou[y]) < d_rt) d_rt = creal(od[x] + ou[y]), rx = x, ry = y;
+    double coh_cross = band_coherence(pc, 1, rx, ry);
+    /* Degenerate legs (B = C) make this 1: merged groups differ by whole e legs, and the bound
+     * must count the interference between them. */
+    double coh_intra = dmax2(dmax2(band_coherence(pc, 0, 1, 0), band_coherence(pc, 0, 0, 1)),
+                             dmax2(band_coherence(pc, 0, 1, 1), band_coherence(pc, 0, 1, -1)));
     /* Tail energies by forward iteration (tail_energy for every candidate order at once). */
     const int nb = tm->bands;
     double total[EXP_MAX_FORMS][3], v[EXP_MAX_FORMS][3][2];

@@ -9,8 +9,8 @@
 # each side (prefilter/plain, analyzer/s-p, ...). A row whose feature a side lacks (an option,
 # a method, a scene its parser refuses, MPI) is "n/a" for that side instead of failing.
 #
-#   bench/paired_bench.sh                        # every row, main vs the working tree (~10 min)
-#   bench/paired_bench.sh --quick                # every row, smaller frames, 2 rounds (~4 min)
+#   bench/paired_bench.sh                        # every row, main vs the working tree (~15 min)
+#   bench/paired_bench.sh --quick                # every row, smaller frames, 2 rounds (~5 min)
 #   bench/paired_bench.sh --rows analytic,startup --base COMMIT --rounds 7
 #   bench/paired_bench.sh --base 13ce0eb --rows analytic   # the original single measurement
 #   bench/paired_bench.sh --dry-run              # the rows and their commands; builds nothing

@@ -415,7 +415,7 @@ for e in result_rows:
 for n in notes:
     print("  " + n)
 if within:
-    print("within each side (wall):")
+    print("within each side (wall; first / second, > 1: the first costs more):")
     for w in within:
         print("  %-40s base %8s   current %8s" % (w["ratio"], ratio(w["base"]), ratio(w["current"])))
 print("load average before %s, after %s" % (out["load_before"], out["load_after"]))

@@ -17,6 +17,7 @@
 #include "spectral/phase_prefilter.h"
 #include "spectral/spectral_internal.h"
 #include "test_cases.h"
+#include "test_packet_lights.h"
 #include "test_render_util.h"
 
 static int quick;
@@ -327,28 +328,6 @@ static void test_renders_per_isa(void) { renders_per_isa(BIREF_ANTIALIAS_NONE); 
 /* The renderer's default: prefiltered look-ups in the kernel's lanes. */
 static void test_prefiltered_renders_per_isa(void) { renders_per_isa(BIREF_ANTIALIAS_PREFILTER); }
 
-/* A random real light of a hit: a linear polarizer (C = e e^T, |e| <= 1) or partially polarized
- * light in the s/p plane (S3 = 0), and a world-fixed-like linear analyzer P = a (a / |a|)^T with
- * |a| <= 1 or none (P = I). */
-static void random_real_light(test_rng *rng, biref_packet_light *l)
-{
-    const double g = test_uniform(rng, 0, M_PI), amp = test_uniform(rng, 0.2, 1);
-    if (test_uniform(rng, 0, 1) < 0.5) {
-        const double e[2] = {amp * cos(g), amp * sin(g)};
-        l->C[0] = e[0] * e[0], l->C[1] = e[0] * e[1], l->C[2] = e[1] * e[1];
-    } else {
-        const double S1 = test_uniform(rng, -0.5, 0.5), S2 = test_uniform(rng, -0.5, 0.5);
-        l->C[0] = 0.5 * (1 + S1), l->C[1] = 0.5 * S2, l->C[2] = 0.5 * (1 - S1);
-    }
-    if (test_uniform(rng, 0, 1) < 0.2) {
-        l->P[0] = 1, l->P[1] = 0, l->P[2] = 0, l->P[3] = 1;
-        return;
-    }
-    const double h = test_uniform(rng, 0, M_PI), len = test_uniform(rng, 0.3, 1);
-    const double a[2] = {len * cos(h), len * sin(h)}, u[2] = {cos(h), sin(h)};
-    l->P[0] = a[0] * u[0], l->P[1] = a[0] * u[1], l->P[2] = a[1] * u[0], l->P[3] = a[1] * u[1];
-}
-
 /* A random complex light: partially polarized light with a circular part (C01 = (S2 + i S3) / 2) and
  * a circular analyzer of either hand, or an elliptical one with random complex entries. */
 static void random_complex_light(test_rng *rng, biref_packet_light *l)
@@ -362,12 +341,6 @@ static void random_complex_light(test_rng *rng, biref_packet_light *l)
         return;
     }
     for (int q = 0; q < 4; q++) l->P[q] = test_uniform(rng, -0.7, 0.7), l->Pi[q] = test_uniform(rng, -0.7, 0.7);
-}
-
-static void light_matrices(const biref_packet_light *l, double complex C[2][2], double complex P[2][2])
-{
-    C[0][0] = l->C[0], C[0][1] = l->C[1] + I * l->Ci, C[1][0] = l->C[1] - I * l->Ci, C[1][1] = l->C[2];
-    for (int q = 0; q < 4; q++) P[q >> 1][q & 1] = l->P[q] + I * l->Pi[q];
 }
 
 /* The hit kernels under a light per hit (world-fixed polarizers' form, or complex: circular light
@@ -439,7 +412,8 @@ static void light_per_hit_kernels_vs_scalar(int complex_light)
             CHECK(complex_light && f ? taken == 0 : taken >= (int)n - (int)n / 50);
         }
     }
-    /* The integrator's door: the analytic method takes them, another method declines every hit. */
+    /* The integrator's door: the analytic method takes them, a numeric method declines every hit
+     * (the expansion's lanes take real lights too: tests/test_expansion_packet.c). */
     biref_integrator_options o;
     biref_integrator_options_default(&o);
     biref_integrator *it = NULL;
@@ -453,7 +427,7 @@ static void light_per_hit_kernels_vs_scalar(int complex_light)
         }
     CHECK(taken > 0);
     biref_integrator_destroy(it);
-    o.method = BIREF_METHOD_EXPANSION;
+    o.method = BIREF_METHOD_NUMERIC;
     CHECK(biref_integrator_create(sp, &o, &it, NULL, 0) == BIREF_OK);
     biref_integrate_packet_hits_lit(it, &H, NULL, n, lights, T, R, scalar);
     for (size_t k = 0; k < n; k++) CHECK(scalar[k] == 1);

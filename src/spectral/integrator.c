@@ -300,9 +300,21 @@ void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_
     else if (it->xhits && light->sp_model && (!fp || one_prefilter(fp, n))) {
         /* The scalar expansion detects through P = diag(mask) as a Jones matrix: weights mask^2. */
         const double m2[2] = {light->mask[0] * light->mask[0], light->mask[1] * light->mask[1]};
-        it->xhits(it->sp, &it->xopts, light->w_in, m2, hits, n, T, R, scalar, fp);
+        it->xhits(it->sp, &it->xopts, light->w_in, m2, hits, n, T, R, scalar, fp, NULL);
     } else
         memset(scalar, 1, n);
+}
+
+/* Lights without imaginary parts (the expansion's lanes take real lights only). */
+static int real_lights(const biref_packet_hit_light *lights, size_t n)
+{
+    for (size_t k = 0; k < n; k++) {
+        const biref_packet_light *s[2] = {&lights[k].T, &lights[k].R};
+        for (int d = 0; d < 2; d++)
+            if (s[d]->Ci != 0.0 || s[d]->Pi[0] != 0.0 || s[d]->Pi[1] != 0.0 || s[d]->Pi[2] != 0.0 || s[d]->Pi[3] != 0.0)
+                return 0;
+    }
+    return 1;
 }
 
 void biref_integrate_packet_hits_lit(const biref_integrator *it, const biref_packet_hits *hits,
@@ -311,6 +323,8 @@ void biref_integrate_packet_hits_lit(const biref_integrator *it, const biref_pac
 {
     if (it->hits && (!fp || one_prefilter(fp, n)))
         it->hits(it->sp, NULL, NULL, hits, n, T, R, scalar, fp, lights);
+    else if (it->xhits && (!fp || one_prefilter(fp, n)) && real_lights(lights, n))
+        it->xhits(it->sp, &it->xopts, NULL, NULL, hits, n, T, R, scalar, fp, lights);
     else
         memset(scalar, 1, n);
 }

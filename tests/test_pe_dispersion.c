@@ -215,7 +215,44 @@ static void tilted_white_with_alpha_is_refused(void)
     CHECK(biref_pe_shade_general(&s, context(), &p, 1, 0.0, xyz) == BIREF_ERR_INVALID);
 }
 
+/* Through the thickness: the stack at a wavelength takes C there. alpha 0: the same layers as
+ * biref_pe_stack at any wavelength; alpha 0.3, fixed principal directions, index-matched:
+ * crossed polarizers see sin^2 2phi sin^2(Γ(λ)/2), Γ(λ) = 2 pi C(λ) h <s1 - s2> / λ. */
+static void through_thickness_takes_C_at_each_wavelength(void)
+{
+    biref_pe_material m;
+    CHECK(biref_pe_material_preset("glass", &m) == BIREF_OK);
+    const double h = 6e-3, phi = 0.4;
+    enum { N = 8 };
+    biref_pe_stress st[N];
+    double mean = 0.0;
+    for (int k = 0; k < N; k++) {
+        const double z = (k + 0.5) / N * 2 - 1, d = 40e6 * (1.5 * z * z - 0.5) + 60e6;
+        st[k] = (biref_pe_stress){0.5 * d * (1 + cos(2 * phi)), 0.5 * d * (1 - cos(2 * phi)), 0.5 * d * sin(2 * phi)};
+        mean += d / N;
+    }
+    biref_stack a, b;
+    CHECK(biref_pe_stack(&m, h, m.n0, N, st, &a, NULL, 0) == BIREF_OK);
+    CHECK(biref_pe_stack_at(&m, h, m.n0, N, st, 430.0, &b, NULL, 0) == BIREF_OK);
+    CHECK(memcmp(&a, &b, sizeof a) == 0);
+    m.dispersion_alpha = 0.3;
+    double worst = 0.0;
+    for (int c = 0; c < 8; c++) {
+        const double lambda = 400 + 40 * c;
+        CHECK(biref_pe_stack_at(&m, h, m.n0, N, st, lambda, &b, NULL, 0) == BIREF_OK);
+        biref_jones T;
+        CHECK(biref_stack_jones(&b, 0.0, lambda, &T, NULL) == BIREF_OK);
+        const double G = 2 * M_PI * biref_pe_C_at(&m, lambda) * mean * h / (lambda * 1e-9);
+        const double t = creal(T.m[0][1] * conj(T.m[0][1]));
+        worst = fmax(worst, fabs(t - pow(sin(2 * phi) * sin(G / 2), 2)));
+    }
+    printf("  through the thickness, alpha 0.3 vs sin^2 2phi sin^2(Γ(λ)/2): %.2g\n", worst);
+    CHECK(worst < 1e-5);
+    CHECK(biref_pe_stack_at(&m, h, m.n0, N, st, -1.0, &b, NULL, 0) == BIREF_ERR_INVALID);
+}
+
 static const test_case CASES[] = {
+    {"through_thickness_takes_C_at_each_wavelength", through_thickness_takes_C_at_each_wavelength},
     {"law_and_fringe_constant", law_and_fringe_constant},
     {"alpha_zero_is_todays_picture", alpha_zero_is_todays_picture},
     {"white_matches_slab_sum_over_wavelengths", white_matches_slab_sum_over_wavelengths},

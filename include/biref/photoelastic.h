@@ -104,6 +104,13 @@ BIREF_API biref_slab biref_pe_slab_best(const biref_pe_material *m, double thick
  * retardations add (integrated photoelasticity); rotating directions change the picture. */
 BIREF_API biref_status biref_pe_stack(const biref_pe_material *m, double thickness_m, double eta_i, int n_layers,
                                       const biref_pe_stress *stress, biref_stack *out, char *msg, size_t msg_len);
+/* The same plate at one wavelength with C(lambda_nm) (dispersion of birefringence, docs/
+ * PHOTOELASTICITY.md §17): with alpha != 0 the layers' indices depend on the wavelength, so a
+ * white-light picture builds the stack at every sample wavelength. biref_pe_stack is this at the
+ * material's reference wavelength. */
+BIREF_API biref_status biref_pe_stack_at(const biref_pe_material *m, double thickness_m, double eta_i, int n_layers,
+                                         const biref_pe_stress *stress, double lambda_nm, biref_stack *out, char *msg,
+                                         size_t msg_len);
 
 /* ------------------------------------------------------------------------ */
 /* Stress fields (closed forms)                                              */

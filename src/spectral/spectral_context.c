@@ -7,6 +7,7 @@
 
 #include "error.h"
 #include "spectral/spectral_internal.h"
+#include "spectral/subband.h"
 #include "spectral/table_build.h"
 
 /* Table resolution. Hermite interpolation of the demodulated F has error ~ (2 pi B h)^4 / 384
@@ -185,6 +186,7 @@ void biref_spectral_destroy(biref_spectral *sp)
     free(sp->carrier);
     free(sp->packet_table);
     for (int i = 0; i < sp->n_coherent; i++) biref_numeric_plan_destroy(sp->coherent[i]);
+    biref_subbands_destroy(atomic_load_explicit(&sp->subbands, memory_order_acquire));
     free(sp);
 }
 

@@ -313,7 +313,7 @@ static int check_scenes(const char *scenes, int fig9_on, int table1_on)
 /* What each figure reads (relative to --scenes) and writes (in DIR), checked against each other
  * before the first figure is computed (docs/CLI.md, "Files"). */
 static const struct {
-    const char *reads[3], *writes[4];
+    const char *reads[5], *writes[4];
 } FIGURE_FILES[] = {
     {{NULL}, {"fig5.csv", "fig5.png"}},
     {{NULL}, {"fig6c.csv", "fig6c.png"}},
@@ -322,7 +322,9 @@ static const struct {
     {{"fig9a.json"}, {"table1.csv", "table1.md"}},
     {{"fig9c.json", "aliasing/thick_grazing.json"}, {"aliasing.csv", "aliasing.png"}},
     {{NULL}, {"dispersion.csv", "dispersion_summary.csv", "dispersion.png"}},
-    {{"stacks/lyot_stage1.json", "stacks/solc_folded.json", "stacks/film_on_glass.json"}, {"filters.csv", "filters.png"}},
+    {{"stacks/lyot_stage1.json", "stacks/solc_folded.json", "stacks/film_on_glass.json",
+      "stacks/quartz_zero_order_halfwave.json", "stacks/quartz_multi_order_halfwave.json"},
+     {"filters.csv", "filters.png"}},
     {{NULL}, {"tape_art.csv", "tape_art.png"}},
     {{NULL}, {"stress_thickness.csv", "stress_thickness.png"}},
 };
@@ -333,7 +335,7 @@ static int check_files(const char *dir, const char *scenes, const int *sel, int 
     cli_files_init(&files);
     for (int i = 0; i < n; i++) {
         if (!sel[i]) continue;
-        for (int k = 0; k < 3 && FIGURE_FILES[i].reads[k]; k++) {
+        for (int k = 0; k < 5 && FIGURE_FILES[i].reads[k]; k++) {
             char path[4096];
             snprintf(path, sizeof path, "%s/%s", scenes, FIGURE_FILES[i].reads[k]);
             cli_files_read(&files, "--scenes", path);

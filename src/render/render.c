@@ -41,7 +41,7 @@ static biref_status check_render_options(const biref_render_options *opt, char *
     return BIREF_OK;
 }
 
-/* Dispersive slabs: physical over the spectral band (one line, "slabs[i].material: ..."). */
+/* Dispersive slabs and stack layers: physical over the spectral band (one line, "slabs[i].material: ..."). */
 static biref_status check_materials(const biref_spectral *sp, const biref_scene *scene, char *msg, size_t msg_len)
 {
     const biref_cmf_band *band = biref_spectral_band(sp);
@@ -50,6 +50,11 @@ static biref_status check_materials(const biref_spectral *sp, const biref_scene 
         char why[BIREF_MSG_SIZE];
         if (m && biref_material_check_band(m, band->lmin_nm, band->lmax_nm, why, sizeof why) != BIREF_OK)
             return biref_fail(msg, msg_len, "slabs[%d].material: %s", i, why);
+        for (int k = 0; k < scene->slabs[i].n_layers; k++) {
+            const biref_material *lm = scene->slabs[i].layers[k].material;
+            if (lm && biref_material_check_band(lm, band->lmin_nm, band->lmax_nm, why, sizeof why) != BIREF_OK)
+                return biref_fail(msg, msg_len, "slabs[%d].layers[%d].material: %s", i, k, why);
+        }
     }
     return BIREF_OK;
 }

@@ -8,11 +8,11 @@
 #include <stdatomic.h>
 #include <stdlib.h>
 
+#include "spectral/phase_tables.h"
 #include "spectral/subband.h"
 #include "spectral/table_build.h"
 
-/* The point table's quadrature (spectral_context.c). */
-#define BUILD_DLAMBDA_NM 0.05
+/* Nodes per block of the parallel build (the point table's, phase_tables.c). */
 #define BUILD_BLOCK_NODES 64
 /* Tables of levels 1..L: 2 + 4 + ... + 2^L. */
 #define SUBBAND_TABLES ((1 << (BIREF_SUBBAND_LEVELS + 1)) - 2)
@@ -43,7 +43,7 @@ static biref_status build(biref_subbands *sb)
     const double klo = 2.0 * M_PI / lmax, khi = 2.0 * M_PI / lmin;
     for (int p = 0; p < BIREF_SUBBAND_POINTS; p++)
         sb->k[p] = sqrt(klo * klo + (khi * khi - klo * klo) * p / (BIREF_SUBBAND_POINTS - 1));
-    const int n = (int)ceil((lmax - lmin) / BUILD_DLAMBDA_NM);
+    const int n = (int)ceil((lmax - lmin) / BIREF_TABLE_BUILD_DLAMBDA_NM);
     const double dl = (lmax - lmin) / n;
     double(*lam)[5] = malloc((size_t)n * sizeof *lam); /* band weights * dl, frequency, sub-band */
     if (!lam) return BIREF_ERR_NOMEM;

@@ -41,6 +41,7 @@
 # --keep DIR (keep and reuse the builds in DIR), --json (one JSON object on stdout),
 # --dry-run, -h/--help. Times are printed as they come on stderr.
 set -euo pipefail
+{ # the whole script is read before it runs: editing it during a long run cannot change that run
 
 all_rows="analytic prefilter fig9c analyzer45 expansion numeric-8 numeric-32 ground-truth ss1 ss4 startup render mpi"
 base=main rows=all rounds="" threads=2 quick=0 gt_seconds="" startup_runs=5 mpi_ranks=2
@@ -125,6 +126,7 @@ else
 fi
 
 if [ "$dry_run" = 0 ]; then
+    # shellcheck disable=SC2317 # called by the trap
     cleanup() {
         git -C "$src" worktree remove --force "$work/base-src" >/dev/null 2>&1 || true
         [ -n "$keep" ] || rm -rf "$work"
@@ -328,9 +330,10 @@ for i in range(rounds):
             best = sorted(runs, key=lambda r: r["wall_ms"])[len(runs) // 2]  # median run of the round
             data[(n, side)].append(best)
             got[side] = best
-        log("round %d %-13s " % (i + 1, n) + "  ".join(
-            "%s %.1f ms%s" % (s, got[s]["wall_ms"], "" if got[s]["cpu_ms"] is None else " (cpu %.1f)" % got[s]["cpu_ms"])
-            for s in ("base", "current") if s in got))
+        if got:
+            log("round %d %-13s " % (i + 1, n) + "  ".join(
+                "%s %.1f ms%s" % (s, got[s]["wall_ms"], "" if got[s]["cpu_ms"] is None else " (cpu %.1f)" % got[s]["cpu_ms"])
+                for s in ("base", "current") if s in got))
 load_after = open("/proc/loadavg").read().split()[:3]
 
 def median(xs):
@@ -378,12 +381,16 @@ if E["PB_JSON"] == "1":
     sys.exit(0)
 
 def ms(v):
-    return "-" if v is None else ("%.0f" % v if v >= 1000 else "%.1f" % v)
+    if v is None:
+        return "-"
+    if v >= 1e5:
+        return "%.0f s" % (v / 1e3) if v < 6e5 else "%.1f min" % (v / 6e4)
+    return "%.0f" % v if v >= 1000 else "%.1f" % v
 
 def ratio(v):
     return "n/a" if v is None else "%.2fx" % v
 
-print("base %s vs current %s, %d rounds (alternating), %d threads; medians in ms; speed-up = median of base/current"
+print("base %s vs current %s, %d rounds (alternating), %d threads; medians in ms unless marked; speed-up = median of base/current"
       % (out["base"], out["current"], rounds, threads))
 head = ("row", "measurement", "base", "current", "speed-up", "base cpu", "cur. cpu", "cpu speed-up")
 fmt = "%-13s %-56s %9s %9s %9s %9s %9s %12s"
@@ -413,3 +420,5 @@ if within:
         print("  %-40s base %8s   current %8s" % (w["ratio"], ratio(w["base"]), ratio(w["current"])))
 print("load average before %s, after %s" % (out["load_before"], out["load_after"]))
 PYTHON
+exit $?
+}

@@ -35,7 +35,7 @@ static biref_status prepared_at(const biref_material *m, const biref_slab *geome
 
 /* The largest residual phase of the birefringent lags e − o (down, up, both) at the level the
  * look-up chooses. */
-static double birefringent_residual(const biref_spectral *sp, const biref_leg_dispersion *ld)
+static double birefringent_residual(const biref_spectral *sp, biref_leg_dispersion *ld)
 {
     static const int lags[3][4] = {{-1, 1, 0, 0}, {0, 0, -1, 1}, {-1, 1, -1, 1}};
     double worst = 0.0;
@@ -74,7 +74,7 @@ static biref_status band_states(const biref_spectral *sp, const biref_material *
     return BIREF_OK;
 }
 
-static biref_opl_footprint dispersive_footprint(const biref_leg_dispersion *ld)
+static biref_opl_footprint dispersive_footprint(biref_leg_dispersion *ld)
 {
     biref_opl_footprint fp;
     memset(&fp, 0, sizeof fp);
@@ -107,7 +107,7 @@ biref_status biref_integrate_material_closed_form(const biref_integrator *it, co
                 out->R[i][o][j] = x.R[i][o][j];
             }
     }
-    return BIREF_OK;
+    return ld.failed; /* a sample point where the material is unphysical */
 }
 
 biref_status biref_integrate_material_closed_form_polarized(const biref_integrator *it, const biref_material *m,
@@ -141,5 +141,5 @@ biref_status biref_integrate_material_closed_form_polarized(const biref_integrat
         xyz[j] = x[j];
         if (order > *order_used) *order_used = order;
     }
-    return BIREF_OK;
+    return ld.failed; /* a sample point where the material is unphysical */
 }

@@ -2,6 +2,7 @@
  * the sub-band tables (subband.h, docs/PHYSICS.md §7). */
 #include <complex.h>
 #include <math.h>
+#include <string.h>
 
 #include "optics/modes_internal.h"
 #include "optics/slab_internal.h"
@@ -45,30 +46,43 @@ static biref_status paths_and_slopes(const biref_material *m, const double axis[
     return BIREF_OK;
 }
 
+/* Samples point p: the legs' phases and group paths. */
+static void sample(biref_leg_dispersion *ld, int p)
+{
+    const double k = biref_subband_points(ld->sb)[p], lambda = 2.0 * M_PI / k;
+    double opl[4], dopl[4];
+    biref_status s = paths_and_slopes(ld->m, ld->axis, ld->K, ld->d, lambda, opl, dopl);
+    if (s != BIREF_OK && ld->failed == BIREF_OK) ld->failed = s;
+    for (int l = 0; l < 4; l++) {
+        /* φ = k opl, φ' = d(k opl)/dk = opl − λ dopl/dλ: the group path */
+        ld->phi[l][p] = s == BIREF_OK ? k * opl[l] : NAN;
+        ld->grp[l][p] = s == BIREF_OK ? opl[l] - lambda * dopl[l] : NAN;
+        if (s == BIREF_OK && dopl[l] != 0.0) ld->flat = 0;
+    }
+    ld->have[p] = 1;
+}
+
 biref_status biref_leg_dispersion_init(const biref_spectral *sp, const biref_material *m, const biref_slab *geometry,
                                        double theta, biref_leg_dispersion *ld)
 {
     ld->sb = biref_spectral_subbands(sp);
     if (!ld->sb) return BIREF_ERR_NOMEM;
-    const double *k = biref_subband_points(ld->sb);
+    ld->m = m;
+    biref_axis_unit_unchecked(geometry->axis, ld->axis);
+    ld->K = geometry->eta_i * sin(theta);
+    ld->d = geometry->thickness_nm;
     ld->flat = 1;
-    double axis[3];
-    biref_axis_unit_unchecked(geometry->axis, axis);
-    const double K = geometry->eta_i * sin(theta), d = geometry->thickness_nm;
-    for (int p = 0; p < BIREF_SUBBAND_POINTS; p++) {
-        const double lambda = 2.0 * M_PI / k[p];
-        double opl[4], dopl[4];
-        biref_status s = paths_and_slopes(m, axis, K, d, lambda, opl, dopl);
-        if (s != BIREF_OK) return s;
-        for (int l = 0; l < 4; l++) {
-            /* φ = k opl, φ' = d(k opl)/dk = opl − λ dopl/dλ: the group path */
-            ld->phi[l][p] = k[p] * opl[l];
-            ld->grp[l][p] = opl[l] - lambda * dopl[l];
-            if (dopl[l] != 0.0) ld->flat = 0;
-        }
-    }
+    ld->failed = BIREF_OK;
     ld->cache = NULL;
-    return BIREF_OK;
+    memset(ld->have, 0, sizeof ld->have);
+    const int last = BIREF_SUBBAND_POINTS - 1;
+    sample(ld, 0);
+    sample(ld, last / 2);
+    sample(ld, last);
+    /* Flat only if no point at all depends on λ (a table may be flat in places). */
+    for (int p = 1; ld->flat && ld->failed == BIREF_OK && p < last; p++)
+        if (!ld->have[p]) sample(ld, p);
+    return ld->failed;
 }
 
 /* The largest distance of the lag's phase Phi from the tangent at each sub-band's midpoint, at the
@@ -86,8 +100,9 @@ static double level_residual(const double *Phi, const double *G, const double *k
 }
 
 /* The lag's phase and group path at sample point p. */
-static void lag_at(const biref_leg_dispersion *ld, const int n[4], int p, double *Phi, double *G)
+static void lag_at(biref_leg_dispersion *ld, const int n[4], int p, double *Phi, double *G)
 {
+    if (!ld->have[p]) sample(ld, p);
     Phi[p] = G[p] = 0.0;
     for (int l = 0; l < 4; l++) {
         Phi[p] += n[l] * ld->phi[l][p];
@@ -114,25 +129,42 @@ static void subband_sum(const biref_subbands *sb, const double *Phi, const doubl
     }
 }
 
+/* The cache slot of lag n: where it is stored, or the free slot where it would go; -1 when the
+ * table is full and n is not in it. */
+static int slot(const biref_lag_cache *lc, const int n[4])
+{
+    unsigned h = (unsigned)(n[0] * 73856093) ^ (unsigned)(n[1] * 19349663) ^ (unsigned)(n[2] * 83492791) ^
+                 (unsigned)(n[3] * 2654435761u);
+    for (int probe = 0; probe < BIREF_LAG_CACHE; probe++) {
+        const int i = (int)((h + (unsigned)probe) % BIREF_LAG_CACHE);
+        if (!lc->used[i]) return i;
+        if (lc->n[i][0] == n[0] && lc->n[i][1] == n[1] && lc->n[i][2] == n[2] && lc->n[i][3] == n[3]) return i;
+    }
+    return -1;
+}
+
 static int cached(const biref_lag_cache *lc, const int n[4], double c[3], double s[3])
 {
-    for (int i = 0; lc && i < lc->count; i++)
-        if (lc->n[i][0] == n[0] && lc->n[i][1] == n[1] && lc->n[i][2] == n[2] && lc->n[i][3] == n[3]) {
-            for (int j = 0; j < 3; j++) c[j] = lc->c[i][j], s[j] = lc->s[i][j];
-            return 1;
-        }
-    return 0;
+    const int i = lc ? slot(lc, n) : -1;
+    if (i < 0 || !lc->used[i]) return 0;
+    for (int j = 0; j < 3; j++) c[j] = lc->c[i][j], s[j] = lc->s[i][j];
+    return 1;
 }
 
 static void remember(biref_lag_cache *lc, const int n[4], const double c[3], const double s[3])
 {
-    if (!lc || lc->count == BIREF_LAG_CACHE) return;
-    const int i = lc->count++;
-    for (int l = 0; l < 4; l++) lc->n[i][l] = n[l];
+    /* Leg counts beyond a signed char (orders past 127) are not cached. */
+    for (int l = 0; l < 4; l++)
+        if (n[l] < -127 || n[l] > 127) return;
+    const int i = lc && lc->count < BIREF_LAG_CACHE / 2 ? slot(lc, n) : -1;
+    if (i < 0 || lc->used[i]) return;
+    lc->used[i] = 1;
+    lc->count++;
+    for (int l = 0; l < 4; l++) lc->n[i][l] = (signed char)n[l];
     for (int j = 0; j < 3; j++) lc->c[i][j] = c[j], lc->s[i][j] = s[j];
 }
 
-void biref_lag_integrals(const biref_spectral *sp, const biref_leg_dispersion *ld, double opd, const int n[4],
+void biref_lag_integrals(const biref_spectral *sp, biref_leg_dispersion *ld, double opd, const int n[4],
                          double c[3], double s[3], int *level_out, double *residual_out)
 {
     if (level_out) *level_out = -1;

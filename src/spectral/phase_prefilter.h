@@ -38,7 +38,7 @@ typedef struct {
     double grad[4][2];
     /* A dispersive material's leg phases (spectral/subband.h), or NULL: every phase integral is
      * then the sum over sub-bands of the lag's tangents (docs/PHYSICS.md §7), and pf is not used. */
-    const struct biref_leg_dispersion *disp;
+    struct biref_leg_dispersion *disp; /* (sampled and cached as the look-ups go) */
 } biref_opl_footprint;
 
 /* The same footprint for the state lit from the other face (biref_slab_state_flip swaps legs). */

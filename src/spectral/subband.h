@@ -35,26 +35,35 @@ const double *biref_subband_points(const biref_subbands *sb);
 /* T_{L,b,j}(D) for the three bands, any real D with |D| <= the table's d_max. */
 void biref_subband_eval(const biref_subbands *sb, int level, int b, double d, double complex v[3]);
 
-/* Phase integrals already taken for one hit, by lag (the three band runs look up the same lags). */
-#define BIREF_LAG_CACHE 48
+/* Phase integrals already taken for one slab, by lag (the three band runs look up the same lags):
+ * an open-addressing table on the lag's leg counts; when it is full, lags are computed anew. */
+#define BIREF_LAG_CACHE 256
 typedef struct {
     int count;
-    int n[BIREF_LAG_CACHE][4];
+    unsigned char used[BIREF_LAG_CACHE];
+    signed char n[BIREF_LAG_CACHE][4];
     double c[BIREF_LAG_CACHE][3], s[BIREF_LAG_CACHE][3];
 } biref_lag_cache;
 
 /* The legs' phases of one slab of a dispersive material at one angle: per leg type (in
  * biref_opl_footprint order) the phase φ_l = k Re(opl_l) and the group path φ_l' = dφ_l/dk at the
- * sample points. flat: no leg's path depends on the wavelength (a material of constant indices),
- * every look-up is then the plain one. cache: filled by the look-ups (may be NULL). */
+ * sample points, sampled when a look-up first needs them (have[p]; the ends and the middle at
+ * once). flat: no leg's path depends on the wavelength (a material of constant indices), every
+ * look-up is then the plain one. failed: the status of a sample point where the material is
+ * unphysical (its phases are then NaN). cache: filled by the look-ups (may be NULL). */
 typedef struct biref_leg_dispersion {
     const biref_subbands *sb;
+    const biref_material *m;
+    double axis[3], K, d;
     int flat;
+    biref_status failed;
+    unsigned char have[BIREF_SUBBAND_POINTS];
     double phi[4][BIREF_SUBBAND_POINTS], grp[4][BIREF_SUBBAND_POINTS];
     biref_lag_cache *cache;
 } biref_leg_dispersion;
 
-/* The codes of biref_material_indices; BIREF_ERR_NOMEM when the tables cannot be made. */
+/* The codes of biref_material_indices at the points sampled at once; BIREF_ERR_NOMEM when the
+ * tables cannot be made. */
 biref_status biref_leg_dispersion_init(const biref_spectral *sp, const biref_material *m, const biref_slab *geometry,
                                        double theta, biref_leg_dispersion *ld);
 
@@ -66,7 +75,7 @@ biref_status biref_leg_dispersion_init(const biref_spectral *sp, const biref_mat
  * the band's own table (also for lags beyond the sub-band tables, where the band integral has all
  * but vanished); *level_out (may be NULL): the level used, -1 for the plain look-up;
  * *residual_out (may be NULL): the largest phase error of the tangents there (radians). */
-void biref_lag_integrals(const biref_spectral *sp, const biref_leg_dispersion *ld, double opd_nm, const int n[4],
+void biref_lag_integrals(const biref_spectral *sp, biref_leg_dispersion *ld, double opd_nm, const int n[4],
                          double c[3], double s[3], int *level_out, double *residual_out);
 
 #endif

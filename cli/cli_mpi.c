@@ -9,6 +9,7 @@
 
 #ifdef BIREF_HAVE_MPI
 #include <mpi.h>
+#include <omp.h>
 #include <time.h>
 #include <unistd.h>
 #endif
@@ -51,6 +52,24 @@ static int launched_by_mpi(void)
     return 0;
 }
 
+/* The default thread count of each process (--threads and OMP_NUM_THREADS override it): the
+ * machine's cores shared among its processes, within the cores the process is bound to. OpenMP's
+ * own default, every core in each process, oversubscribes a machine that runs several: its idle
+ * threads spin, and a frame of cheap tiles took 60x as long (docs/CLUSTER.md). */
+static void share_cores(void)
+{
+    if (getenv("OMP_NUM_THREADS")) return;
+    MPI_Comm node;
+    int local = 1;
+    if (MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node) == MPI_SUCCESS) {
+        MPI_Comm_size(node, &local);
+        MPI_Comm_free(&node);
+    }
+    const long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    const int bound = omp_get_num_procs(), share = cores > local ? (int)(cores / local) : 1;
+    omp_set_num_threads(share < bound ? share : bound);
+}
+
 void cli_mpi_init(int *argc, char ***argv)
 {
     if (!launched_by_mpi()) return;
@@ -65,6 +84,7 @@ void cli_mpi_init(int *argc, char ***argv)
         g.size = 1;
         return;
     }
+    share_cores();
     if (g.rank > 0) {
         /* Only rank 0 prints. The streams, not file descriptors 1 and 2, go to /dev/null (glibc's
          * stdout and stderr are variables one may set): a sanitizer's report, written to
@@ -195,9 +215,14 @@ static int jobs_master(job_run *j)
         int progressed = 0, flag = 0;
         MPI_Message m;
         MPI_Status st;
-        while (MPI_Improbe(MPI_ANY_SOURCE, TAG_RESULT, MPI_COMM_WORLD, &flag, &m, &st), flag) {
+        for (;;) {
+            /* A free buffer first: a result stays in the network until one is (a rank's results
+             * can outrun the tests of their transfers). */
             int b = 0;
-            while (busy[b]) b++; /* free: at most DEPTH results per rank are on their way */
+            while (b < nbuf - 1 && busy[b]) b++;
+            if (b == nbuf - 1) break;
+            MPI_Improbe(MPI_ANY_SOURCE, TAG_RESULT, MPI_COMM_WORLD, &flag, &m, &st);
+            if (!flag) break;
             busy[b] = 1;
             MPI_Imrecv(buf + (size_t)b * j->msg_size, (int)j->msg_size, MPI_BYTE, &m, &req[b]);
             const int w = st.MPI_SOURCE;

@@ -83,6 +83,7 @@ int main(int argc, char **argv)
                                     thickness, 1.0, sin(theta)};
         biref_packet_hit_put(&hits[0][0], HITS, (size_t)k, &h);
         fp[k].pf = pf;
+        fp[k].disp = NULL;
         for (int leg = 0; leg < 4; leg++) /* a fringe's worth of path across the pixel */
             fp[k].grad[leg][0] = fp[k].grad[leg][1] = (leg & 1 ? 260.0 : 250.0) * thickness / 1.25e6;
     }

@@ -266,6 +266,12 @@ biref_status biref_integrate_batch(const biref_integrator *it, const biref_slab_
 static biref_status scalar_hit(const biref_integrator *it, const biref_slab_state *st, const biref_opl_footprint *fp,
                                const biref_light *light, double T[3], double R[3])
 {
+    if (it->plan && !biref_light_is_world_fixed(light)) {
+        /* Numeric methods: both sides in one pass, sharing the phases and the round trip. */
+        biref_numeric_hit(it->plan, st, (const double complex(*)[2])light->C,
+                          light->has_analyzer ? (const double complex(*)[2])light->P : NULL, T, R);
+        return finite3(T) && finite3(R) ? BIREF_OK : BIREF_ERR_ILLCOND;
+    }
     biref_integration res;
     biref_status s = biref_integrate_footprint(it, st, fp, BIREF_SIDE_TRANSMISSION, light, &res);
     if (s != BIREF_OK) return s;

@@ -1,0 +1,203 @@
+/* The numeric methods in lanes across wavelengths (numeric_lanes.c) against the scalar double
+ * path: their sincos against libm's; on seeded random slabs the four pair intensities, the
+ * polarized sides and a hit's transmission with its flipped reflection against the sums of
+ * biref_slab_jones_at one wavelength at a time, on every instruction set this processor runs. */
+#include <complex.h>
+#include <math.h>
+#include <string.h>
+
+#include "biref/biref.h"
+#include "spectral/analytic_packet.h"
+#include "spectral/numeric_lanes.h"
+#include "spectral/spectral_internal.h"
+#include "test_cases.h"
+
+enum { SEED = 11 };
+
+typedef void (*sincos_fn)(const double *x, int n, double *s, double *c);
+static const sincos_fn SINCOS[BIREF_SIMD_COUNT] = {NULL, biref_numeric_lanes_sincos_baseline,
+                                                   biref_numeric_lanes_sincos_avx2,
+                                                   biref_numeric_lanes_sincos_avx512};
+
+/* sin and cos of the same double as libm to 1e-15 absolute (libm is within an ulp), from tiny
+ * arguments to 2^29 rad (a 1.4e9 nm path at 380 nm), negative ones too. */
+static void sincos_matches_libm(void)
+{
+    enum { N = 4096 };
+    static double x[N], s[N], c[N];
+    test_rng r = {SEED};
+    static const double SCALE[] = {1e-6, 1.0, 4.0, 1e3, 1e6, 0x1p29};
+    for (int i = 0; i < N; i++) x[i] = test_uniform(&r, -1.0, 1.0) * SCALE[i % 6];
+    x[0] = 0.0, x[1] = M_PI / 4, x[2] = -M_PI / 2, x[3] = 3 * M_PI / 4; /* quadrant edges */
+    for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
+        if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
+        SINCOS[isa](x, N, s, c);
+        double worst = 0.0;
+        for (int i = 0; i < N; i++) worst = fmax(worst, fmax(fabs(s[i] - sin(x[i])), fabs(c[i] - cos(x[i]))));
+        printf("sincos, %s: largest difference from libm %.3g\n", biref_simd_isa_name((biref_simd_isa)isa), worst);
+        CHECK(worst <= 1e-15);
+    }
+}
+
+/* A random slab as test_numeric_block draws them (indices 1.2-1.8, random axis, 10 nm - 5 mm,
+ * a third in a dense surround with total reflection and evanescent legs). */
+static int random_state(test_rng *r, int i, biref_slab_state *st)
+{
+    biref_slab s;
+    s.eta_o = test_uniform(r, 1.2, 1.8);
+    s.eta_e = test_uniform(r, 1.2, 1.8);
+    test_random_axis(r, s.axis);
+    s.thickness_nm = exp(test_uniform(r, log(10.0), log(5e6)));
+    s.eta_i = i % 3 == 0 ? 1.9 : 1.0;
+    return biref_slab_prepare(&s, test_uniform(r, 0.0, 1.55), st) == BIREF_OK;
+}
+
+/* The intensity under C through P of one Jones matrix, written out independently. */
+static double detected(const biref_jones *J, const double complex C[2][2], const double complex P[2][2])
+{
+    double complex M[2][2];
+    for (int a = 0; a < 2; a++)
+        for (int c = 0; c < 2; c++) M[a][c] = J->m[a][0] * P[0][c] + J->m[a][1] * P[1][c];
+    double v = 0.0;
+    for (int a = 0; a < 2; a++)
+        for (int b = 0; b < 2; b++)
+            for (int c = 0; c < 2; c++) v += creal(C[a][b] * M[a][c] * conj(M[b][c]));
+    return v;
+}
+
+/* The scalar path's sums: pairs of T and R, and the detected T, R and R of the flipped state. */
+typedef struct {
+    biref_spectrum pairs;
+    double T[3], R[3], Rflip[3];
+} sums;
+
+static void scalar_sums(const biref_numeric_plan *plan, const biref_slab_state *st, const double complex C[2][2],
+                        const double complex P[2][2], sums *s)
+{
+    memset(s, 0, sizeof *s);
+    biref_slab_state fl;
+    biref_slab_state_flip(st, &fl);
+    for (int n = 0; n < plan->samples; n++) {
+        biref_jones T, R, Tf, Rf;
+        biref_slab_jones_at(st, plan->lambda[n], &T, &R);
+        biref_slab_jones_at(&fl, plan->lambda[n], &Tf, &Rf);
+        double PT[2][2], PR[2][2];
+        biref_jones_intensity(&T, PT);
+        biref_jones_intensity(&R, PR);
+        const double dT = detected(&T, C, P), dR = detected(&R, C, P), dRf = detected(&Rf, C, P);
+        for (int j = 0; j < 3; j++) {
+            const double w = plan->weight[n][j];
+            for (int a = 0; a < 2; a++)
+                for (int o = 0; o < 2; o++) {
+                    s->pairs.T[a][o][j] += w * PT[a][o];
+                    s->pairs.R[a][o][j] += w * PR[a][o];
+                }
+            s->T[j] += w * dT, s->R[j] += w * dR, s->Rflip[j] += w * dRf;
+        }
+    }
+}
+
+static double max_diff(const double *a, const double *b, size_t n)
+{
+    double d = 0.0;
+    for (size_t i = 0; i < n; i++) d = fmax(d, fabs(a[i] - b[i]));
+    return d;
+}
+
+/* Every output of the lanes within 1e-12 of the scalar sums (band-normalised XYZ, at most ~1),
+ * on each instruction set; most states must take the lanes (the rest, with evanescent legs,
+ * the per-wavelength blocks). */
+static void lanes_match_scalar_path(void)
+{
+    biref_spectral *sp = NULL;
+    CHECK(biref_spectral_create(NULL, &sp, NULL, 0) == BIREF_OK);
+    if (!sp) return;
+    static const int SAMPLES[] = {1, 5, 8, 33, 100};
+    const int states_per_plan = test_quick() ? 20 : 80;
+    test_rng r = {SEED + 1};
+    for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
+        if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
+        double worst = 0.0;
+        int compared = 0, in_lanes = 0;
+        for (size_t ns = 0; ns < sizeof SAMPLES / sizeof SAMPLES[0]; ns++) {
+            biref_numeric_plan *plan = NULL;
+            CHECK(biref_numeric_plan_create(sp, SAMPLES[ns], &plan, NULL, 0) == BIREF_OK);
+            if (!plan) continue;
+            plan->isa = isa;
+            for (int i = 0; i < states_per_plan; i++) {
+                biref_slab_state st;
+                if (!random_state(&r, i, &st)) continue;
+                /* a random coherency (Hermitian, trace 1) and analyzer, or none */
+                const double a = test_uniform(&r, 0, 1), g = test_uniform(&r, -0.5, 0.5);
+                const double complex C[2][2] = {{a, g * sqrt(a * (1 - a)) * (0.6 + 0.8 * I)},
+                                                {g * sqrt(a * (1 - a)) * (0.6 - 0.8 * I), 1 - a}};
+                const double complex P[2][2] = {{test_uniform(&r, -1, 1), test_uniform(&r, -1, 1) * I},
+                                                {test_uniform(&r, -1, 1), test_uniform(&r, -1, 1)}};
+                const int analyzer = i % 2;
+                const double complex Id[2][2] = {{1, 0}, {0, 1}};
+                sums want;
+                scalar_sums(plan, &st, C, analyzer ? P : Id, &want);
+                biref_spectrum got;
+                double T[3], R[3], hT[3], hR[3];
+                biref_spectrum_numeric(plan, &st, &got);
+                biref_spectrum_numeric_polarized(plan, &st, BIREF_TRANSMISSION, C, analyzer ? P : NULL, T);
+                biref_spectrum_numeric_polarized(plan, &st, BIREF_REFLECTION, C, analyzer ? P : NULL, R);
+                biref_numeric_hit(plan, &st, C, analyzer ? P : NULL, hT, hR);
+                double d = max_diff(&got.T[0][0][0], &want.pairs.T[0][0][0], 12);
+                d = fmax(d, max_diff(&got.R[0][0][0], &want.pairs.R[0][0][0], 12));
+                d = fmax(d, fmax(max_diff(T, want.T, 3), max_diff(R, want.R, 3)));
+                d = fmax(d, fmax(max_diff(hT, want.T, 3), max_diff(hR, want.Rflip, 3)));
+                worst = fmax(worst, d);
+                biref_numeric_lanes_job job;
+                job.outputs = BIREF_NL_T;
+                job.pairs = 1;
+                in_lanes += biref_numeric_lanes_run(plan, &st, &job);
+                compared++;
+            }
+            biref_numeric_plan_destroy(plan);
+        }
+        printf("%s: %d states (%d in lanes), largest difference from the scalar sums %.3g\n",
+               biref_simd_isa_name((biref_simd_isa)isa), compared, in_lanes, worst);
+        CHECK(compared > 3 * states_per_plan && in_lanes > compared / 2);
+        CHECK(worst <= 1e-12);
+    }
+    biref_spectral_destroy(sp);
+}
+
+/* The plan's scalar path (BIREF_SIMD=scalar) never takes the lanes, and a complex path never. */
+static void lanes_refuse_scalar_plans_and_evanescent_legs(void)
+{
+    biref_spectral *sp = NULL;
+    CHECK(biref_spectral_create(NULL, &sp, NULL, 0) == BIREF_OK);
+    biref_numeric_plan *plan = NULL;
+    if (!sp || biref_numeric_plan_create(sp, 16, &plan, NULL, 0) != BIREF_OK) {
+        CHECK(0);
+        biref_spectral_destroy(sp);
+        return;
+    }
+    biref_slab s = {.eta_o = 1.5, .eta_e = 1.6, .axis = {0, 0, 1}, .thickness_nm = 1e4, .eta_i = 1.0};
+    biref_slab_state st;
+    CHECK(biref_slab_prepare(&s, 0.3, &st) == BIREF_OK);
+    biref_numeric_lanes_job job;
+    job.outputs = BIREF_NL_T;
+    job.pairs = 1;
+    plan->isa = BIREF_SIMD_BASELINE;
+    CHECK(biref_numeric_lanes_run(plan, &st, &job) == 1);
+    plan->isa = BIREF_SIMD_SCALAR;
+    CHECK(biref_numeric_lanes_run(plan, &st, &job) == 0);
+    plan->isa = BIREF_SIMD_BASELINE;
+    st.opl_up[1] += 1e-3 * I; /* an evanescent leg */
+    CHECK(biref_numeric_lanes_run(plan, &st, &job) == 0);
+    biref_numeric_plan_destroy(plan);
+    biref_spectral_destroy(sp);
+}
+
+int main(int argc, char **argv)
+{
+    static const test_case cases[] = {
+        {"sincos_matches_libm", sincos_matches_libm},
+        {"lanes_match_scalar_path", lanes_match_scalar_path},
+        {"lanes_refuse_scalar_plans_and_evanescent_legs", lanes_refuse_scalar_plans_and_evanescent_legs},
+    };
+    return test_run_cases("test_numeric_lanes", cases, TEST_COUNT(cases), argc, argv);
+}

@@ -25,6 +25,8 @@ static void through_mode(const biref_complex x[2][2], const biref_complex y[2][2
             }
 }
 
+static int is_real(const double im[2][2]) { return im[0][0] == 0.0 && im[0][1] == 0.0 && im[1][0] == 0.0 && im[1][1] == 0.0; }
+
 void biref_numeric_lanes_light(biref_numeric_lanes_job *job, const double complex C[2][2],
                                const double complex P[2][2])
 {
@@ -35,6 +37,7 @@ void biref_numeric_lanes_light(biref_numeric_lanes_job *job, const double comple
             job->Cr[a][b] = creal(C[a][b]), job->Ci[a][b] = cimag(C[a][b]);
             job->Pr[a][b] = P ? creal(P[a][b]) : a == b, job->Pi[a][b] = P ? cimag(P[a][b]) : 0.0;
         }
+    if (P && is_real(job->Pi)) job->has_P = 2;
 }
 
 int biref_numeric_lanes_run(const biref_numeric_plan *plan, const biref_slab_state *st, biref_numeric_lanes_job *job)
@@ -57,6 +60,10 @@ int biref_numeric_lanes_run(const biref_numeric_plan *plan, const biref_slab_sta
     split(bottom->t_down, &job->t12);
     split(top->r_down, &job->r01);
     split(bottom->r_up, &job->r21);
+    job->real = 1;
+    const biref_nl_cm2 *all[10] = {&job->M[0], &job->M[1], &job->Q[0], &job->Q[1], &job->N[0],
+                                   &job->N[1], &job->t01, &job->t12, &job->r01, &job->r21};
+    for (int m = 0; m < 10; m++) job->real &= is_real(all[m]->i);
     job->k = plan->k;
     for (int b = 0; b < 3; b++) job->w[b] = plan->wband[b];
     job->n = plan->padded;

@@ -47,7 +47,8 @@ typedef struct {
     int pairs;   /* 1: the four |J[in][out]|^2 of each output; 0: one intensity under C and P */
     double Cr[2][2], Ci[2][2]; /* incident coherency (pairs = 0) */
     double Pr[2][2], Pi[2][2]; /* analyzer (has_P) */
-    int has_P;
+    int has_P; /* 0: none, 1: complex, 2: real */
+    int real;  /* every coefficient matrix above is real (set by biref_numeric_lanes_run) */
     const double *k;        /* vacuum wavenumbers, n of them, n a multiple of BIREF_NUMERIC_LANES_PAD */
     const double *w[3];     /* band weights per sample (0 on padding) */
     int n;

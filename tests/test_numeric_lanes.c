@@ -237,8 +237,8 @@ static void renders_match_scalar_path(void)
     const char *scenes[] = {"examples/fig9a.json", "examples/fig9c_analyzer45.json"};
     const char *isa = biref_simd_isa_name(biref_simd_isa_choose());
     for (int i = 0; i < 2; i++)
-        for (int gt = 0; gt < 2; gt++) {
-            const int W = gt || test_quick() ? 24 : 64, H = gt || test_quick() ? 14 : 36;
+        for (int gt = 0; gt < (test_quick() ? 1 : 2); gt++) { /* the sanitizer build: numeric-32 only */
+            const int W = test_quick() ? 16 : gt ? 24 : 64, H = test_quick() ? 9 : gt ? 14 : 36;
             const biref_method m = gt ? BIREF_METHOD_GROUND_TRUTH : BIREF_METHOD_NUMERIC;
             float *ref = render_numeric(scenes[i], m, 32, "scalar", 2, W, H);
             float *a = render_numeric(scenes[i], m, 32, isa, 2, W, H);

@@ -15,14 +15,23 @@ static void split(const biref_complex m[2][2], biref_nl_cm2 *out)
 }
 
 /* out[c][a][b] = x[a][c] y[c][b]: the product x diag(p) y is sum_c p[c] out[c]. */
-static void through_mode(const biref_complex x[2][2], const biref_complex y[2][2], biref_nl_cm2 out[2])
+static void through_mode(const biref_complex x[2][2], const biref_complex y[2][2], int real, biref_nl_cm2 out[2])
 {
     for (int c = 0; c < 2; c++)
         for (int a = 0; a < 2; a++)
             for (int b = 0; b < 2; b++) {
+                if (real) {
+                    out[c].r[a][b] = creal(x[a][c]) * creal(y[c][b]), out[c].i[a][b] = 0.0;
+                    continue;
+                }
                 const double complex v = x[a][c] * y[c][b];
                 out[c].r[a][b] = creal(v), out[c].i[a][b] = cimag(v);
             }
+}
+
+static int real_matrix(const biref_complex m[2][2])
+{
+    return cimag(m[0][0]) == 0.0 && cimag(m[0][1]) == 0.0 && cimag(m[1][0]) == 0.0 && cimag(m[1][1]) == 0.0;
 }
 
 static int is_real(const double im[2][2]) { return im[0][0] == 0.0 && im[0][1] == 0.0 && im[1][0] == 0.0 && im[1][1] == 0.0; }
@@ -53,17 +62,18 @@ int biref_numeric_lanes_run(const biref_numeric_plan *plan, const biref_slab_sta
         job->opl_up[x] = creal(st->opl_up[x]);
     }
     const biref_interface *top = &st->top, *bottom = &st->bottom;
-    through_mode(bottom->r_down, top->r_up, job->M);   /* r12 diag(P_up) r10 */
-    through_mode(bottom->r_down, top->t_up, job->Q);   /* r12 diag(P_up) t10 */
-    through_mode(bottom->t_up, top->r_up, job->N);     /* t21 diag(P_up) r10 */
+    /* Real coefficients (every wave propagating) take the kernel's real instantiation. */
+    const int real = real_matrix(top->t_down) && real_matrix(top->r_down) && real_matrix(top->r_up) &&
+                     real_matrix(top->t_up) && real_matrix(bottom->t_down) && real_matrix(bottom->r_down) &&
+                     real_matrix(bottom->r_up) && real_matrix(bottom->t_up);
+    through_mode(bottom->r_down, top->r_up, real, job->M); /* r12 diag(P_up) r10 */
+    through_mode(bottom->r_down, top->t_up, real, job->Q); /* r12 diag(P_up) t10 */
+    through_mode(bottom->t_up, top->r_up, real, job->N);   /* t21 diag(P_up) r10 */
     split(top->t_down, &job->t01);
     split(bottom->t_down, &job->t12);
     split(top->r_down, &job->r01);
     split(bottom->r_up, &job->r21);
-    job->real = 1;
-    const biref_nl_cm2 *all[10] = {&job->M[0], &job->M[1], &job->Q[0], &job->Q[1], &job->N[0],
-                                   &job->N[1], &job->t01, &job->t12, &job->r01, &job->r21};
-    for (int m = 0; m < 10; m++) job->real &= is_real(all[m]->i);
+    job->real = real;
     job->k = plan->k;
     for (int b = 0; b < 3; b++) job->w[b] = plan->wband[b];
     job->n = plan->padded;

@@ -10,6 +10,7 @@
 #include "optics/slab_internal.h"
 #include "spectral/analytic_terms.h"
 #include "spectral/integrator_internal.h"
+#include "spectral/numeric_lanes.h"
 #include "spectral/phase_prefilter.h"
 #include "spectral/spectral_internal.h"
 #include "spectral/stack_internal.h"
@@ -297,6 +298,12 @@ void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_
                                  const biref_opl_footprint *fp, size_t n, const biref_light *light, double (*T)[3],
                                  double (*R)[3], unsigned char *scalar)
 {
+    if (it->plan && !biref_light_is_world_fixed(light)) { /* numeric methods (no footprints) */
+        biref_numeric_packet_hits(it->plan, (const double complex(*)[2])light->C,
+                                  light->has_analyzer ? (const double complex(*)[2])light->P : NULL, hits, n, T, R,
+                                  scalar);
+        return;
+    }
     if (it->hits && light->sp_model && (!fp || one_prefilter(fp, n)))
         it->hits(it->sp, light->w_in, light->mask, hits, n, T, R, scalar, fp, NULL);
     else

@@ -3,6 +3,7 @@
  * all of the plan's samples. */
 #include <complex.h>
 #include <math.h>
+#include <string.h>
 
 #include "spectral/analytic_packet.h"
 #include "spectral/numeric_lanes.h"
@@ -83,4 +84,24 @@ int biref_numeric_lanes_run(const biref_numeric_plan *plan, const biref_slab_sta
     default: biref_numeric_lanes_baseline(job); break;
     }
     return 1;
+}
+
+void biref_numeric_packet_hits(const biref_numeric_plan *plan, const double complex C[2][2],
+                               const double complex P[2][2], const biref_packet_hit *hits, size_t n, double (*T)[3],
+                               double (*R)[3], unsigned char *scalar)
+{
+    if (plan->isa == BIREF_SIMD_SCALAR) {
+        memset(scalar, 1, n);
+        return;
+    }
+    biref_numeric_lanes_job job;
+    biref_numeric_lanes_light(&job, C, P);
+    job.k = plan->k;
+    for (int b = 0; b < 3; b++) job.w[b] = plan->wband[b];
+    job.n = plan->padded;
+    switch (plan->isa) {
+    case BIREF_SIMD_AVX512: biref_numeric_hits_avx512(&job, hits, n, T, R, scalar); break;
+    case BIREF_SIMD_AVX2: biref_numeric_hits_avx2(&job, hits, n, T, R, scalar); break;
+    default: biref_numeric_hits_baseline(&job, hits, n, T, R, scalar); break;
+    }
 }

@@ -14,7 +14,10 @@
 
 #include <complex.h>
 
+#include <stddef.h>
+
 #include "biref/optics.h"
+#include "spectral/analytic_packet.h"
 
 /* Wavelengths a plan's arrays are padded to (the widest lane count; padded samples weigh 0). */
 #define BIREF_NUMERIC_LANES_PAD 8
@@ -67,7 +70,25 @@ void biref_numeric_lanes_sincos_baseline(const double *x, int n, double *s, doub
 void biref_numeric_lanes_sincos_avx2(const double *x, int n, double *s, double *c);
 void biref_numeric_lanes_sincos_avx512(const double *x, int n, double *s, double *c);
 
+/* A packet of hits (analytic_packet.h): each hit's state set up in lanes across hits (the analytic
+ * kernel's v_prepare), then its wavelengths in lanes: T of the state and R of the flipped state
+ * under job's light, as biref_numeric_hit gives them; scalar[k] = 1 for a hit the set-up cannot
+ * take (as for the analytic kernel), whose T and R are left undefined. */
+void biref_numeric_hits_baseline(biref_numeric_lanes_job *job, const biref_packet_hit *hits, size_t n,
+                                 double (*T)[3], double (*R)[3], unsigned char *scalar);
+void biref_numeric_hits_avx2(biref_numeric_lanes_job *job, const biref_packet_hit *hits, size_t n, double (*T)[3],
+                             double (*R)[3], unsigned char *scalar);
+void biref_numeric_hits_avx512(biref_numeric_lanes_job *job, const biref_packet_hit *hits, size_t n,
+                               double (*T)[3], double (*R)[3], unsigned char *scalar);
+
 struct biref_numeric_plan;
+
+/* The renderer's door for the numeric methods (biref_integrate_packet_hits): the hits of a tile
+ * under the coherency C and analyzer P (NULL: none) on the plan's instruction set; on the scalar
+ * path (BIREF_SIMD=scalar) every hit is marked scalar. */
+void biref_numeric_packet_hits(const struct biref_numeric_plan *plan, const double complex C[2][2],
+                               const double complex P[2][2], const biref_packet_hit *hits, size_t n, double (*T)[3],
+                               double (*R)[3], unsigned char *scalar);
 
 /* The lanes path for one state: fills job (outputs, pairs, light as set by the caller) with
  * st's parts and runs the plan's kernel. 0 when the state or the plan cannot take it (a complex

@@ -4,4 +4,5 @@
 #include "spectral/simd/avx2.h"
 #define NUMERIC_LANES_FN biref_numeric_lanes_avx2
 #define NUMERIC_SINCOS_FN biref_numeric_lanes_sincos_avx2
+#define NUMERIC_HITS_FN biref_numeric_hits_avx2
 #include "spectral/numeric_lanes.inc"

@@ -4,4 +4,5 @@
 #include "spectral/simd/avx512.h"
 #define NUMERIC_LANES_FN biref_numeric_lanes_avx512
 #define NUMERIC_SINCOS_FN biref_numeric_lanes_sincos_avx512
+#define NUMERIC_HITS_FN biref_numeric_hits_avx512
 #include "spectral/numeric_lanes.inc"

@@ -4,4 +4,5 @@
 #include "spectral/simd/baseline.h"
 #define NUMERIC_LANES_FN biref_numeric_lanes_baseline
 #define NUMERIC_SINCOS_FN biref_numeric_lanes_sincos_baseline
+#define NUMERIC_HITS_FN biref_numeric_hits_baseline
 #include "spectral/numeric_lanes.inc"

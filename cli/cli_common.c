@@ -1,4 +1,5 @@
 #include "cli_common.h"
+#include "cli_mpi.h"
 
 #include <errno.h>
 #include <math.h>
@@ -8,12 +9,15 @@
 
 void cli_error(const char *cmd, const char *fmt, ...)
 {
+    /* One line, also kept for the other processes of an MPI job (cli_mpi.h). */
+    char line[8192];
+    int n = snprintf(line, sizeof line, "biref %s: error: ", cmd);
     va_list ap;
     va_start(ap, fmt);
-    fprintf(stderr, "biref %s: error: ", cmd);
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
+    if (n >= 0 && (size_t)n < sizeof line) vsnprintf(line + n, sizeof line - (size_t)n, fmt, ap);
     va_end(ap);
+    fprintf(stderr, "%s\n", line);
+    cli_mpi_note_error(line);
 }
 
 /* The length of the decimal number at the start of s: [+-]digits[.digits][(e|E)[+-]digits], at

@@ -16,6 +16,8 @@
 #include "cli_common.h"
 #include "cli_data.h"
 #include "cli_files.h"
+#include "cli_mpi.h"
+#include "cli_mpi_render.h"
 #include "commands.h"
 #include "de_scale.h"
 #include "fig_aliasing.h"
@@ -73,7 +75,10 @@ static double render_rows(const fig_ctx *c, const biref_scene *sc, const method_
     snprintf(what, sizeof what, "figure %s", label);
     biref_progress_bar_init(&bar, stderr, 1, what);
     double t0 = biref_wall_seconds();
-    biref_status s = biref_renderer_render(r, y0, sc->camera.height, step, xyz, biref_progress_bar_update, &bar, NULL);
+    /* A whole frame in an MPI job: every process renders tiles of it (rank 0 gets the image). */
+    biref_status s = cli_mpi_active() && y0 == 0 && step == 1
+                         ? cli_mpi_render(r, xyz, biref_progress_bar_update, &bar, NULL)
+                         : biref_renderer_render(r, y0, sc->camera.height, step, xyz, biref_progress_bar_update, &bar, NULL);
     double t = biref_wall_seconds() - t0;
     biref_progress_bar_finish(&bar);
     biref_renderer_destroy(r);
@@ -101,6 +106,8 @@ static int fig9_scene(const fig_ctx *c, const char *scenes, const char *name, FI
         if (secs[m] < 0) return free(xyz), free(rgb), free(de), free(sorted), CLI_EXIT_FAIL;
         biref_xyz_image_to_srgb8(xyz + (size_t)m * npx * 3, npx, rgb + (size_t)m * npx * 3);
     }
+    /* The other processes of an MPI job have rendered their tiles; rank 0 has the images. */
+    if (cli_mpi_rank() > 0) return free(xyz), free(rgb), free(de), free(sorted), CLI_EXIT_OK;
     const float *gt = xyz + (size_t)FIG9_GT * npx * 3;
     for (int m = 0; m < FIG9_NMETHODS; m++) {
         const float *im = xyz + (size_t)m * npx * 3;
@@ -162,8 +169,22 @@ static int fig9_scene(const fig_ctx *c, const char *scenes, const char *name, FI
     return fig_close_csv(png, path) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
 }
 
+/* The other processes of an MPI job: the same renders as rank 0's fig9, in the same order. */
+static int fig9_share(const fig_ctx *c, const char *scenes)
+{
+    static const char *const names[3] = {"fig9a", "fig9b", "fig9c"};
+    for (int i = 0; i < 3; i++) {
+        char sp[4096];
+        snprintf(sp, sizeof sp, "%s/%s.json", scenes, names[i]);
+        int rc = access(sp, R_OK) == 0 ? fig9_scene(c, scenes, names[i], NULL) : CLI_EXIT_OK;
+        if (rc) return rc;
+    }
+    return CLI_EXIT_OK;
+}
+
 static int fig9(const fig_ctx *c, const char *scenes)
 {
+    if (cli_mpi_rank() > 0) return fig9_share(c, scenes);
     char path[4096];
     biref_outfile *out = fig_open_csv(c, "fig9.csv", path, sizeof path);
     if (!out) return CLI_EXIT_FAIL;
@@ -313,7 +334,7 @@ static int check_scenes(const char *scenes, int fig9_on, int table1_on)
 /* What each figure reads (relative to --scenes) and writes (in DIR), checked against each other
  * before the first figure is computed (docs/CLI.md, "Files"). */
 static const struct {
-    const char *reads[3], *writes[4];
+    const char *reads[5], *writes[4];
 } FIGURE_FILES[] = {
     {{NULL}, {"fig5.csv", "fig5.png"}},
     {{NULL}, {"fig6c.csv", "fig6c.png"}},
@@ -322,7 +343,9 @@ static const struct {
     {{"fig9a.json"}, {"table1.csv", "table1.md"}},
     {{"fig9c.json", "aliasing/thick_grazing.json"}, {"aliasing.csv", "aliasing.png"}},
     {{NULL}, {"dispersion.csv", "dispersion_summary.csv", "dispersion.png"}},
-    {{"stacks/lyot_stage1.json", "stacks/solc_folded.json", "stacks/film_on_glass.json"}, {"filters.csv", "filters.png"}},
+    {{"stacks/lyot_stage1.json", "stacks/solc_folded.json", "stacks/film_on_glass.json",
+      "stacks/quartz_zero_order_halfwave.json", "stacks/quartz_multi_order_halfwave.json"},
+     {"filters.csv", "filters.png"}},
     {{NULL}, {"tape_art.csv", "tape_art.png"}},
     {{NULL}, {"stress_thickness.csv", "stress_thickness.png"}},
 };
@@ -333,7 +356,7 @@ static int check_files(const char *dir, const char *scenes, const int *sel, int 
     cli_files_init(&files);
     for (int i = 0; i < n; i++) {
         if (!sel[i]) continue;
-        for (int k = 0; k < 3 && FIGURE_FILES[i].reads[k]; k++) {
+        for (int k = 0; k < 5 && FIGURE_FILES[i].reads[k]; k++) {
             char path[4096];
             snprintf(path, sizeof path, "%s/%s", scenes, FIGURE_FILES[i].reads[k]);
             cli_files_read(&files, "--scenes", path);
@@ -433,8 +456,10 @@ int cmd_figure(int argc, char **argv)
     /* Everything the figures read is checked before the first one is computed. */
     if ((sel[3] || sel[4]) && check_scenes(scenes, sel[3], sel[4])) return CLI_EXIT_USAGE;
     if (sel[7] && fig_filters_check(scenes)) return CLI_EXIT_USAGE;
-    if ((r = check_files(c.dir, scenes, sel, NFIG))) return r;
-    if (prepare_dir(c.dir)) return CLI_EXIT_FAIL;
+    /* In an MPI job rank 0 alone writes, on its own file system. */
+    const int root = cli_mpi_rank() == 0;
+    if (root && (r = check_files(c.dir, scenes, sel, NFIG))) return r;
+    if (root && prepare_dir(c.dir)) return CLI_EXIT_FAIL;
     if (c.threads > 0) omp_set_num_threads(c.threads);
 
     biref_spectral_config cfg;
@@ -444,9 +469,15 @@ int cmd_figure(int argc, char **argv)
         return cli_error(FIG_CMD, "spectral context: %s", why), CLI_EXIT_FAIL;
     if (biref_numeric_plan_create(c.sp, BIREF_GROUND_TRUTH_SAMPLES, &c.gt, why, sizeof why) != BIREF_OK)
         return biref_spectral_destroy(c.sp), cli_error(FIG_CMD, "numeric plan: %s", why), CLI_EXIT_FAIL;
-    int rc = CLI_EXIT_OK;
+    /* In an MPI job: every process is ready, or all stop with the first failure's line. */
+    int rc = cli_mpi_agree(CLI_EXIT_OK);
     for (int i = 0; i < NFIG && rc == CLI_EXIT_OK; i++) {
         if (!sel[i]) continue;
+        /* The other processes of an MPI job share fig9's renders; rank 0 makes everything else. */
+        if (!root) {
+            if (i == 3 && (rc = fig9(&c, scenes))) rc = cli_mpi_abort(rc);
+            continue;
+        }
         fprintf(stderr, "biref figure: %s%s ...\n", NAMES[i], c.quick ? " (quick)" : "");
         double t0 = biref_wall_seconds();
         switch (i) {
@@ -462,6 +493,9 @@ int cmd_figure(int argc, char **argv)
         default: rc = fig_stress_thickness(&c); break;
         }
         if (rc == CLI_EXIT_OK) fprintf(stderr, "biref figure: %s done in %.1f s\n", NAMES[i], biref_wall_seconds() - t0);
+        /* The other processes of an MPI job may be waiting for fig9's renders: the job ends here. */
+        else
+            rc = cli_mpi_abort(rc);
     }
     biref_numeric_plan_destroy(c.gt);
     biref_spectral_destroy(c.sp);

@@ -9,6 +9,8 @@
 #include "chroma_map.h"
 #include "cli_files.h"
 #include "cli_gl.h"
+#include "cli_mpi.h"
+#include "cli_mpi_render.h"
 #include "cli_opts.h"
 #include "cli_polarizer.h"
 #include "cli_render.h"
@@ -161,12 +163,16 @@ static int render_xyz(const render_args *a, const biref_scene *scene, float *xyz
     int rc;
     /* The GL back-end handles world-fixed polarizers too (docs/GPU.md): no CPU renderer then. */
     if (!a->gl && (rc = cli_renderer_create(CMD, scene, &a->opt, &r))) return rc;
+    /* In an MPI job: every process is ready, or all stop with the first failure's line. */
+    if ((rc = cli_mpi_agree(0))) return biref_renderer_destroy(r), rc;
     biref_progress_bar bar;
     biref_progress_bar_init(&bar, stderr, !a->gl, "render");
     double t0 = biref_wall_seconds();
     if (a->gl && (rc = cli_gl_render(CMD, scene, xyz, &res->stats, &res->gpu_ms, res->device, sizeof res->device)))
         return rc;
-    biref_status rs = a->gl ? BIREF_OK : biref_render_image(r, xyz, biref_progress_bar_update, &bar, &res->stats);
+    biref_status rs = a->gl              ? BIREF_OK
+                      : cli_mpi_active() ? cli_mpi_render(r, xyz, biref_progress_bar_update, &bar, &res->stats)
+                                         : biref_render_image(r, xyz, biref_progress_bar_update, &bar, &res->stats);
     res->ms = 1e3 * (biref_wall_seconds() - t0);
     biref_progress_bar_finish(&bar);
     biref_renderer_destroy(r);
@@ -278,6 +284,8 @@ int cmd_render(int argc, char **argv)
     int rc = cli_load_scene(CMD, a.scene_path, &scene);
     if (!rc) rc = cli_scene_resize(CMD, &scene, a.width, a.height);
     if (!rc && a.gl) rc = cli_gl_refuse_stacks(CMD, a.scene_path, &scene);
+    if (!rc && a.gl && cli_mpi_active())
+        rc = (cli_error(CMD, "--backend gl renders in one process (no mpirun -n N)"), CLI_EXIT_USAGE);
     if (rc) return rc;
     for (int i = 0; i < scene.n_slabs; i++)
         if (scene.slabs[i].n_layers) {
@@ -295,21 +303,23 @@ int cmd_render(int argc, char **argv)
     cli_files_write(&files, "-o", "png", a.out);
     cli_files_write(&files, "--pfm", "pfm", a.pfm);
     cli_files_write(&files, "--chroma-map", "png", a.chroma);
-    rc = cli_files_check(CMD, &files);
+    /* In an MPI job rank 0 alone writes, on its own file system. */
+    const int root = cli_mpi_rank() == 0;
+    rc = root ? cli_files_check(CMD, &files) : 0;
     cli_files_free(&files);
     if (rc) return rc;
     render_result res = {.W = scene.camera.width, .H = scene.camera.height};
     const size_t n = (size_t)res.W * res.H;
-    float *xyz = malloc(n * 3 * sizeof *xyz);
-    unsigned char *rgb = malloc(n * 3);
-    if (!xyz || !rgb) {
+    float *xyz = root ? malloc(n * 3 * sizeof *xyz) : NULL;
+    unsigned char *rgb = root ? malloc(n * 3) : NULL;
+    if (root && (!xyz || !rgb)) {
         free(xyz);
         free(rgb);
         return cli_error(CMD, "out of memory for a %dx%d image", res.W, res.H), CLI_EXIT_FAIL;
     }
     rc = render_xyz(&a, &scene, xyz, &res);
-    if (!rc) rc = write_images(&a, xyz, rgb, &res);
+    if (!rc && root) rc = write_images(&a, xyz, rgb, &res);
     free(xyz);
     free(rgb);
-    return rc ? rc : print_report(&a, &res);
+    return rc || !root ? rc : print_report(&a, &res);
 }

@@ -64,7 +64,12 @@ static cJSON *layers_json(const biref_stack *s)
     for (int i = 0; i < s->n_layers; i++) {
         const biref_layer *l = &s->layers[i];
         cJSON *o = cJSON_CreateObject();
-        if (l->isotropic) {
+        if (l->material) {
+            biref_material_info info;
+            biref_material_get_info(l->material, &info);
+            cJSON_AddStringToObject(o, "material", info.name);
+            if (!l->isotropic) cJSON_AddItemToObject(o, "axis", json_vec3(l->axis));
+        } else if (l->isotropic) {
             cJSON_AddNumberToObject(o, "eta", l->eta_o);
         } else {
             cJSON_AddNumberToObject(o, "eta_o", l->eta_o);
@@ -120,7 +125,13 @@ int cmd_stack(int argc, char **argv)
     if (s != BIREF_OK) return cli_error(CMD, "%s: %s", file, msg), s == BIREF_ERR_IO ? CLI_EXIT_FAIL : CLI_EXIT_USAGE;
 
     biref_stack_state st;
-    s = biref_stack_prepare(&stack, theta, &st);
+    s = biref_stack_prepare_at(&stack, theta, a.lambda, &st);
+    if (s == BIREF_ERR_INVALID && biref_stack_dispersive(&stack)) {
+        for (int i = 0; i < stack.n_layers; i++)
+            if (stack.layers[i].material &&
+                biref_material_check_band(stack.layers[i].material, a.lambda, a.lambda, msg, sizeof msg) != BIREF_OK)
+                return cli_error(CMD, "%s: layers[%d]: %s", file, i, msg), CLI_EXIT_USAGE;
+    }
     if (s != BIREF_OK) return cli_error(CMD, "%s", biref_status_string(s)), CLI_EXIT_FAIL;
     biref_jones T, R;
     if (a.tmm) {

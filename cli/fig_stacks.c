@@ -34,7 +34,28 @@ int fig_filters_check(const char *examples)
 {
     biref_stack s;
     return load_example(examples, "lyot_stage1.json", &s) || load_example(examples, "solc_folded.json", &s) ||
-           load_example(examples, "film_on_glass.json", &s);
+           load_example(examples, "film_on_glass.json", &s) ||
+           load_example(examples, "quartz_zero_order_halfwave.json", &s) ||
+           load_example(examples, "quartz_multi_order_halfwave.json", &s);
+}
+
+/* The two quartz half-wave plates (n(λ) per wavelength) between crossed polarizers at 45°, and the
+ * multi-order plate again with quartz's indices at 550 nm held constant (no dispersion). */
+static int waveplate_curves(const char *examples, int n, const double *lam, double *zero, double *multi,
+                            double *flat)
+{
+    biref_stack z, m;
+    if (load_example(examples, "quartz_zero_order_halfwave.json", &z) ||
+        load_example(examples, "quartz_multi_order_halfwave.json", &m))
+        return -1;
+    biref_stack c;
+    if (biref_stack_at(&m, 550.0, &c) != BIREF_OK) return cli_error(FIG_CMD, "filters: quartz at 550 nm"), -1;
+    for (int i = 0; i < n; i++) {
+        zero[i] = power_at(&z, lam[i], BIREF_S, BIREF_P);
+        multi[i] = power_at(&m, lam[i], BIREF_S, BIREF_P);
+        flat[i] = power_at(&c, lam[i], BIREF_S, BIREF_P);
+    }
+    return 0;
 }
 
 enum { FILM_ANGLES = 86 };
@@ -69,10 +90,10 @@ int fig_filters(const fig_ctx *c, const char *examples)
     double film_curves[4][FILM_ANGLES], film_theta[FILM_ANGLES];
     if (film_reflectance(c, &film, film_theta, film_curves)) return CLI_EXIT_FAIL;
     const int n = c->quick ? 400 : 3200;
-    double *buf = malloc(sizeof(double) * (size_t)n * (LYOT_STAGES + 5));
+    double *buf = malloc(sizeof(double) * (size_t)n * (LYOT_STAGES + 8));
     if (!buf) return cli_error(FIG_CMD, "out of memory"), CLI_EXIT_FAIL;
     double *lam = buf, *stage = buf + n, *ly = stage + (size_t)n * LYOT_STAGES, *ly0 = ly + n, *so = ly0 + n,
-           *so0 = so + n;
+           *so0 = so + n, *wz = so0 + n, *wm = wz + n, *wf = wm + n;
     const biref_layer *l1 = &lyot.layers[0], *s1 = &solc.layers[0];
     const int N = solc.n_layers;
     const double rho = atan2(s1->axis[2], s1->axis[0]);
@@ -96,18 +117,20 @@ int fig_filters(const fig_ctx *c, const char *examples)
         const double chi = acos(cos(2 * rho) * sin(G / 2));
         so0[i] = pow(tan(2 * rho) * cos(chi) * sin(N * chi) / sin(chi), 2);
     }
+    if (waveplate_curves(examples, n, lam, wz, wm, wf)) return free(buf), CLI_EXIT_USAGE;
     char path[4096];
     biref_outfile *out = fig_open_csv(c, "filters.csv", path, sizeof path);
     if (!out) return free(buf), CLI_EXIT_FAIL;
     FILE *f = biref_outfile_stream(out);
-    fprintf(f, "lambda_nm,lyot_stage1,lyot_stage2,lyot_stage3,lyot_stage4,lyot,lyot_ideal,solc,solc_ideal\n");
+    fprintf(f, "lambda_nm,lyot_stage1,lyot_stage2,lyot_stage3,lyot_stage4,lyot,lyot_ideal,solc,solc_ideal,"
+               "quartz_zero_order,quartz_multi_order,quartz_multi_order_constant\n");
     for (int i = 0; i < n; i++)
-        fprintf(f, "%.4f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", lam[i], stage[i], stage[n + i], stage[2 * n + i],
-                stage[3 * n + i], ly[i], ly0[i], so[i], so0[i]);
+        fprintf(f, "%.4f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", lam[i], stage[i], stage[n + i],
+                stage[2 * n + i], stage[3 * n + i], ly[i], ly0[i], so[i], so0[i], wz[i], wm[i], wf[i]);
     if (fig_close_csv(out, path)) return free(buf), CLI_EXIT_FAIL;
 
     fig_out_path(c, "filters.png", path, sizeof path);
-    if (fig_begin(path, 1200, 1500, 1, 3)) return free(buf), CLI_EXIT_FAIL;
+    if (fig_begin(path, 1200, 2000, 1, 4)) return free(buf), CLI_EXIT_FAIL;
     char title[160];
     snprintf(title, sizeof title, "Lyot filter: %d quartz stages at 45°, %.0f–%.0f µm, polarizers between", LYOT_STAGES,
              l1->thickness_nm / 1e3, l1->thickness_nm * (1 << (LYOT_STAGES - 1)) / 1e3);
@@ -133,6 +156,16 @@ int fig_filters(const fig_ctx *c, const char *examples)
     static const char *const fl[] = {"s → s", "p → p", "s → p (the film's birefringence)", "unpolarized"};
     static const double fw[] = {1.5, 1.5, 1.5, 1.5};
     fig_plot_legend(4, fl, fc, fw, FIG_LEFT);
+    fig_plot_panel(380, 700, 0, 1.3, "λ (nm)", "transmission",
+                   "quartz half-wave plates at 45°, crossed polarizers, index-matched surround, n(λ) of quartz (Ghosh 1999)");
+    fig_plot_line(n, lam, wf, FIG_GREY, 1.0);
+    fig_plot_line(n, lam, wm, FIG_RED, 1.5);
+    fig_plot_line(n, lam, wz, FIG_BLUE, 2.0);
+    static const char *const wl[] = {"zero-order: 1.000 + 1.030 mm, axes crossed", "multi-order: 630 µm (10.5 λ)",
+                                     "multi-order, indices fixed at 550 nm"};
+    static const int wc[] = {FIG_BLUE, FIG_RED, FIG_GREY};
+    static const double ww[] = {2.0, 1.5, 1.0};
+    fig_plot_legend(3, wl, wc, ww, 0);
     free(buf);
     return fig_end(path) ? CLI_EXIT_FAIL : CLI_EXIT_OK;
 }
@@ -196,7 +229,7 @@ static biref_stack film_stack(const patch *p)
     s.n_layers = p->n;
     for (int k = 0; k < p->n; k++) {
         const double t = p->deg[k] * M_PI / 180;
-        s.layers[k] = (biref_layer){FILM_O, FILM_E, {cos(t), 0.0, sin(t)}, FILM_NM[p->film[k]], 0};
+        s.layers[k] = (biref_layer){FILM_O, FILM_E, {cos(t), 0.0, sin(t)}, FILM_NM[p->film[k]], 0, NULL};
     }
     return s;
 }

@@ -2,6 +2,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cli_common.h"
+#include "cli_mpi.h"
 #include "cli_progress.h"
 #include "commands.h"
 
@@ -64,7 +66,21 @@ static void usage(FILE *f)
                "docs/CLI.md.\n");
 }
 
+/* The commands that share their work over the processes of an MPI job (cli_mpi.h). */
+static int runs_distributed(const char *name)
+{
+    return !strcmp(name, "render") || !strcmp(name, "accuracy") || !strcmp(name, "figure");
+}
+
+static int run(int argc, char **argv);
+
 int main(int argc, char **argv)
+{
+    cli_mpi_init(&argc, &argv);
+    return cli_mpi_finish(run(argc, argv));
+}
+
+static int run(int argc, char **argv)
 {
     if (argc < 2) {
         usage(stderr);
@@ -84,6 +100,8 @@ int main(int argc, char **argv)
     }
     for (size_t i = 0; i < N_COMMANDS; i++)
         if (!strcmp(argv[1], commands[i].name)) {
+            if (cli_mpi_active() && !runs_distributed(argv[1]))
+                return cli_error(argv[1], "runs in one process: mpirun -n N is for render, accuracy and figure"), 2;
             /* --progress and --quiet mean the same for every command: taken here, once. */
             const int n = cli_progress_options(argc - 1, argv + 1);
             return n < 0 ? 2 : commands[i].run(n, argv + 1);

@@ -15,6 +15,9 @@ pkgs+=(chromium glslang-tools python3)
 # The three.js package (web/three) and its test: Node and npm; three itself comes from the npm
 # registry at the version web/three/package-lock.json pins (npm ci, below).
 pkgs+=(nodejs)
+# Several processes (mpirun -n N biref render|accuracy|figure, docs/CLUSTER.md): Open MPI's headers,
+# library and mpirun; CMake's BIREF_MPI=OFF builds without them.
+pkgs+=(libopenmpi-dev openmpi-bin)
 # Fuzzing the parsers (tests/fuzz): clang, its libFuzzer/sanitizer runtimes and OpenMP.
 pkgs+=(clang libclang-rt-14-dev libomp-14-dev)
 missing=()

@@ -3,8 +3,9 @@
  * (test_render_reference.h), on the examples, on a scene that exercises what the examples do not:
  * two slabs (one in the coherent regime, which the packet kernel declines), a panel, a checker
  * ground, an s/p light and a p analyzer, at a width that leaves a partial tile, and on the same
- * scene under world-fixed polarizers (every hit the shader's one by one, the background through
- * per-ray analyzers). BIREF_TEST_QUICK (set under sanitizers) shrinks the images. */
+ * scene under world-fixed polarizers (each hit's light resolved in its frames for the packet kernel,
+ * the background through per-ray analyzers), also with a world-fixed polarizer before the p
+ * analyzer. BIREF_TEST_QUICK (set under sanitizers) shrinks the images. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -35,8 +36,9 @@ static const char MIXED[] =
     "  \"polarization\": {\"type\": \"sp\", \"s\": 0.7, \"p\": 0.3}},"
     " \"filter\": {\"type\": \"p\"}}";
 
-/* The mixed scene under a world-fixed polarizer and analyzer (the light's other form). */
-static char WORLD_FIXED[sizeof MIXED + 128];
+/* The mixed scene under a world-fixed polarizer and analyzer (the light's other form), and under a
+ * world-fixed polarizer with its p analyzer. */
+static char WORLD_FIXED[sizeof MIXED + 128], WORLD_POLARIZER[sizeof MIXED + 128];
 
 /* A renderer of the scene at width x height on the instruction set isa (BIREF_SIMD), with point or
  * prefiltered look-ups. */
@@ -44,7 +46,10 @@ static biref_renderer *make(const char *path, const char *isa, int width, int he
 {
     biref_scene sc;
     char msg[256];
-    const char *text = path && !strcmp(path, "world-fixed") ? WORLD_FIXED : MIXED;
+    const char *text = !path                             ? MIXED
+                       : !strcmp(path, "world-fixed")     ? WORLD_FIXED
+                       : !strcmp(path, "world-polarizer") ? WORLD_POLARIZER
+                                                          : MIXED;
     biref_status s = path && text == MIXED ? biref_scene_load(path, &sc, msg, sizeof msg)
                                            : biref_scene_parse(text, strlen(text), &sc, msg, sizeof msg);
     CHECK(s == BIREF_OK);
@@ -116,7 +121,7 @@ static double compare(const biref_renderer *r, const char *what)
 }
 
 static const char *const SCENES[] = {"examples/fig9a.json", "examples/fig9b.json", "examples/fig9c.json",
-                                     "examples/default.json", NULL, "world-fixed"};
+                                     "examples/default.json", NULL, "world-fixed", "world-polarizer"};
 #define N_SCENES (sizeof SCENES / sizeof SCENES[0])
 static const biref_antialias AA[2] = {BIREF_ANTIALIAS_NONE, BIREF_ANTIALIAS_PREFILTER};
 static const char *const AA_NAME[2] = {"point look-ups", "prefilter"};
@@ -127,6 +132,7 @@ static int skip(size_t scene, int aa)
 {
     if (!quick) return 0;
     if (SCENES[scene] && !strcmp(SCENES[scene], "world-fixed")) return aa;
+    if (SCENES[scene] && !strcmp(SCENES[scene], "world-polarizer")) return 1;
     return SCENES[scene] ? scene > 0 || aa : !aa;
 }
 
@@ -210,6 +216,9 @@ int main(int argc, char **argv)
     snprintf(WORLD_FIXED, sizeof WORLD_FIXED, "%.*s", (int)(strstr(MIXED, "\"polarization\"") - MIXED), MIXED);
     strcat(WORLD_FIXED, "\"polarization\": {\"type\": \"linear\", \"direction\": [0.6, 0, 0.8]}},"
                         " \"filter\": {\"type\": \"linear\", \"direction\": [0, 0.8, -0.6]}}");
+    snprintf(WORLD_POLARIZER, sizeof WORLD_POLARIZER, "%.*s", (int)(strstr(MIXED, "\"polarization\"") - MIXED), MIXED);
+    strcat(WORLD_POLARIZER, "\"polarization\": {\"type\": \"linear\", \"direction\": [0.6, 0, 0.8]}},"
+                            " \"filter\": {\"type\": \"p\"}}");
     static const test_case cases[] = {
         {"tiles_equal_pixels_scalar", test_tiles_equal_pixels_scalar},
         {"tiles_near_pixels_kernel", test_tiles_near_pixels_kernel},

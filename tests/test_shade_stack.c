@@ -57,7 +57,7 @@ static void one_layer(const biref_surface *s, biref_stack *st, biref_stack_surfa
     memset(st, 0, sizeof *st);
     st->eta_i = s->eta_i;
     st->n_layers = 1;
-    st->layers[0] = (biref_layer){s->eta_o, s->eta_e, {s->axis[0], s->axis[1], s->axis[2]}, s->thickness_nm, 0};
+    st->layers[0] = (biref_layer){s->eta_o, s->eta_e, {s->axis[0], s->axis[1], s->axis[2]}, s->thickness_nm, 0, NULL};
     memcpy(ss->normal, s->normal, sizeof ss->normal);
     memcpy(ss->tangent, s->tangent, sizeof ss->tangent);
     ss->stack = st;
@@ -134,7 +134,7 @@ static void halving_a_layer_changes_nothing(void)
 static void bad_stack_hits_are_refused(void)
 {
     biref_shader *sh = shader(BIREF_METHOD_ANALYTIC, 0);
-    biref_stack st = {1.0, 1, {{1.5, 1.6, {1, 0, 0}, 1000, 0}}};
+    biref_stack st = {1.0, 1, {{1.5, 1.6, {1, 0, 0}, 1000, 0, NULL}}};
     biref_stack_surface ss = {{0, 1, 0}, {1, 0, 0}, &st};
     const double view[3] = {0, -1, 0.2}, grazing[3] = {1, 0, 0};
     double T[3], R[3];

@@ -214,9 +214,36 @@ static void analytic_shader_takes_world_fixed_polarizer(void)
     biref_shader_destroy(sh);
 }
 
+/* An analytic shader under l (the kernel's general-light terms for a real light, one hit at a time
+ * for a complex one). */
+static biref_shader *analytic_shader(const biref_light *l)
+{
+    biref_shader *sh = NULL;
+    char msg[256];
+    CHECK(biref_shader_create(sp, NULL, l, &sh, msg, sizeof msg) == BIREF_OK);
+    return sh;
+}
+
+/* Stokes light (linear: S3 = 0, or circular) through a linear or circular analyzer. */
+static biref_light stokes_light(int circular)
+{
+    const double stokes[4] = {1.0, 0.3, circular ? 0.0 : 0.5, circular ? 0.8 : 0.0};
+    biref_light l;
+    CHECK(biref_light_stokes(stokes, &l) == BIREF_OK);
+    biref_complex P[2][2];
+    if (circular)
+        biref_analyzer_circular(-1, P);
+    else
+        biref_analyzer_linear(0.7, P);
+    biref_light_set_analyzer(&l, P);
+    return l;
+}
+
 /* Random hits (slabs, orientations, view rays) and a few bad ones, in one batch: every good hit
- * is biref_shade_hit's to the packet kernel's rounding (the analytic shader) or exactly (the
- * numeric shader with world-fixed polarizers, one hit at a time), every bad one has its code. */
+ * is biref_shade_hit's to the packet kernel's rounding (the analytic shaders: the paper's light,
+ * world-fixed polarizers and linear Stokes light resolved per hit for the kernel, circular light
+ * one hit at a time) or exactly (the numeric shader with world-fixed polarizers, one hit at a
+ * time), every bad one has its code. */
 static void shade_hits_equals_shade_hit_per_hit(void)
 {
     enum { N = 77 }; /* more than two of the batch's chunks, not a multiple of any packet */
@@ -236,8 +263,12 @@ static void shade_hits_equals_shade_hit_per_hit(void)
     memcpy(s[40].tangent, s[40].normal, sizeof s[40].tangent); /* no frame */
     v[60][0] = NAN;                          /* a bad ray */
     biref_shader *num = numeric_shader(POLARIZER, ANALYZER);
-    const biref_shader *shaders[2] = {analytic, num};
-    for (int i = 0; i < 2; i++) {
+    const biref_light world = world_light(POLARIZER, ANALYZER), linear = stokes_light(0), circular = stokes_light(1);
+    biref_shader *lit[3] = {analytic_shader(&world), analytic_shader(&linear), analytic_shader(&circular)};
+    const biref_shader *shaders[5] = {analytic, num, lit[0], lit[1], lit[2]};
+    static const char *const names[5] = {"analytic", "numeric, world-fixed", "analytic, world-fixed",
+                                         "analytic, linear Stokes", "analytic, circular Stokes"};
+    for (int i = 0; i < 5; i++) {
         if (!shaders[i]) continue;
         CHECK(biref_shade_hits(shaders[i], N, s, (const double(*)[3])v, T, R, st) == BIREF_ERR_INVALID);
         double worst = 0.0;
@@ -251,11 +282,11 @@ static void shade_hits_equals_shade_hit_per_hit(void)
         }
         CHECK(agree);
         CHECK(st[5] == BIREF_ERR_INVALID && st[40] == BIREF_ERR_INVALID && st[60] == BIREF_ERR_INVALID);
-        printf("%s shader: batch against one hit at a time, worst |difference| %.3g\n", i ? "numeric" : "analytic",
-               worst);
-        CHECK(worst <= (i ? 0.0 : 1e-12));
+        printf("%s shader: batch against one hit at a time, worst |difference| %.3g\n", names[i], worst);
+        CHECK(worst <= (i == 1 ? 0.0 : 1e-12));
     }
     biref_shader_destroy(num);
+    for (int i = 0; i < 3; i++) biref_shader_destroy(lit[i]);
     CHECK(biref_shade_hits(analytic, 0, NULL, NULL, NULL, NULL, NULL) == BIREF_OK);
     CHECK(biref_shade_hits(NULL, 1, s, (const double(*)[3])v, T, R, NULL) == BIREF_ERR_INVALID);
 }

@@ -16,7 +16,7 @@ static const double MATCH_ETA = 1.5, MATCH_DN = 0.001;
 
 static biref_layer plate(double azimuth_rad, double retardance_rad, double lambda)
 {
-    biref_layer l = {MATCH_ETA, MATCH_ETA + MATCH_DN, {cos(azimuth_rad), 0.0, sin(azimuth_rad)}, 0.0, 0};
+    biref_layer l = {MATCH_ETA, MATCH_ETA + MATCH_DN, {cos(azimuth_rad), 0.0, sin(azimuth_rad)}, 0.0, 0, NULL};
     l.thickness_nm = retardance_rad * lambda / (2.0 * M_PI * MATCH_DN);
     return l;
 }
@@ -251,9 +251,9 @@ static void frustrated_total_reflection_in_a_gap(void)
     biref_stack s = matched_stack();
     s.eta_i = 1.7;
     s.n_layers = 3;
-    s.layers[0] = (biref_layer){1.65, 1.55, {0.3, 0.4, 0.8}, 2000.0, 0};
-    s.layers[1] = (biref_layer){1.0, 1.0, {0, 1, 0}, 120.0, 1};
-    s.layers[2] = (biref_layer){1.6, 1.7, {0.9, 0.1, 0.2}, 3000.0, 0};
+    s.layers[0] = (biref_layer){1.65, 1.55, {0.3, 0.4, 0.8}, 2000.0, 0, NULL};
+    s.layers[1] = (biref_layer){1.0, 1.0, {0, 1, 0}, 120.0, 1, NULL};
+    s.layers[2] = (biref_layer){1.6, 1.7, {0.9, 0.1, 0.2}, 3000.0, 0, NULL};
     double theta = 50 * M_PI / 180;
     biref_jones T, R, T2, R2;
     CHECK(biref_stack_jones(&s, theta, 520, &T, &R) == BIREF_OK);

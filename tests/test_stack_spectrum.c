@@ -47,7 +47,7 @@ static void path_groups_sum_to_the_exact_jones_matrices(void)
         biref_stack_state st;
         CHECK(biref_stack_prepare(&s, theta, &st) == BIREF_OK);
         biref_stack_groups g;
-        CHECK(biref_stack_path_groups(&st, 1e-5, 1 << 14, &g) == BIREF_OK);
+        CHECK(biref_stack_path_groups(&st, NULL, 1e-5, 1 << 14, &g) == BIREF_OK);
         if (g.reason) continue;
         used++;
         CHECK(g.bound <= 1e-5);
@@ -178,8 +178,8 @@ static void fallback_is_reported(void)
     memset(&s, 0, sizeof s);
     s.eta_i = 1.8; /* a rarer layer at 60 deg: evanescent */
     s.n_layers = 2;
-    s.layers[0] = (biref_layer){1.5, 1.5, {0, 1, 0}, 300.0, 1};
-    s.layers[1] = (biref_layer){1.9, 1.95, {1, 0, 0}, 5000.0, 0};
+    s.layers[0] = (biref_layer){1.5, 1.5, {0, 1, 0}, 300.0, 1, NULL};
+    s.layers[1] = (biref_layer){1.9, 1.95, {1, 0, 0}, 5000.0, 0, NULL};
     biref_stack_state st;
     CHECK(biref_stack_prepare(&s, 60 * M_PI / 180, &st) == BIREF_OK && st.evanescent == 1);
     biref_spectrum x, gt;

@@ -20,6 +20,7 @@
 #include "biref/material.h"
 #include "biref/optics.h"
 #include "biref/polarization.h"
+#include "biref/render.h"
 #include "biref/spectral.h"
 
 #endif /* BIREF_EXPERIMENTAL_H */
@@ -134,6 +135,19 @@ BIREF_API biref_status biref_spectrum_numeric_dispersive_polarized(const biref_n
                                                                    double theta_rad, int which,
                                                                    const biref_complex C[2][2],
                                                                    const biref_complex P[2][2], double xyz[3]);
+
+/* ------------------------------------------------------------------------- */
+/* Rendering part of a frame (render.h)                                        */
+/* ------------------------------------------------------------------------- */
+
+/* Renders the rectangle of pixels x .. x + width - 1, y .. y + height - 1 into a caller buffer:
+ * pixel (x + i, y + j) at xyz[j * row_stride + 3 i .. + 2] (row_stride in floats, >= 3 width);
+ * nothing else is written. Every pixel is bit for bit the one biref_renderer_render gives (for a
+ * frame split into pieces rendered apart, e.g. by several processes), on the renderer's threads
+ * (rows in parallel). stats count the rectangle's pixels. Codes as biref_renderer_render's;
+ * BIREF_ERR_INVALID also for a rectangle that is empty or not inside the image. */
+BIREF_API biref_status biref_renderer_render_rect(const biref_renderer *r, int x, int y, int width, int height,
+                                                  float *xyz, size_t row_stride, biref_render_stats *stats);
 
 #ifdef __cplusplus
 }

@@ -12,6 +12,7 @@
 #include <stddef.h>
 
 #include "biref/common.h"
+#include "biref/material.h"
 #include "biref/optics.h"
 #include "biref/polarization.h"
 #include "biref/spectral.h"
@@ -23,12 +24,17 @@ extern "C" {
 #define BIREF_STACK_MAX_LAYERS 64
 
 /* One layer. isotropic != 0: index eta_o (eta_e and axis ignored). Otherwise uniaxial with
- * ordinary / extraordinary indices and an optic axis in the slab frame (need not be unit). */
+ * ordinary / extraordinary indices and an optic axis in the slab frame (need not be unit).
+ * material != NULL: a dispersive layer (docs/STACKS.md, "Layers of a dispersive material"): its
+ * indices at each wavelength are the material's (eta_o, eta_e ignored; an isotropic material
+ * makes the layer isotropic). Borrowed: the material must outlive the stack and its states (the
+ * catalogue's entries are static). */
 typedef struct {
     double eta_o, eta_e;
     double axis[3];
     double thickness_nm;
     int isotropic;
+    const biref_material *material;
 } biref_layer;
 
 typedef struct {
@@ -43,17 +49,30 @@ BIREF_API biref_status biref_stack_check(const biref_stack *stack, char *msg, si
 /* The one-layer stack of a slab. */
 BIREF_API void biref_stack_from_slab(const biref_slab *slab, biref_stack *out);
 
+/* Non-zero when a layer is of a dispersive material (biref_layer.material). */
+BIREF_API int biref_stack_dispersive(const biref_stack *stack);
+
+/* The stack at one wavelength: every material layer replaced by the constant indices of its
+ * material at lambda_nm (material NULL), the other layers copied. BIREF_ERR_INVALID for a bad
+ * wavelength or one where a material is unphysical (biref_material_check_band says why). */
+BIREF_API biref_status biref_stack_at(const biref_stack *stack, double lambda_nm, biref_stack *out);
+
 /* Stack files (docs/STACKS.md): {"eta_i": 1.0, "layers": [{...}, ...]}, strict JSON (unknown or
  * repeated keys are errors). A layer is {"eta": n} or {"eta_o", "eta_e", "axis": [x, y, z]} or
  * {"eta_o", "eta_e", "azimuth_deg": phi} (optic axis in the surface, at phi from x towards z),
- * with exactly one of thickness_nm, thickness_um, thickness_mm. Errors name the JSON path. */
+ * or {"material": "quartz", "axis" or "azimuth_deg"} (a named material of the catalogue, whose
+ * entries are static), with exactly one of thickness_nm, thickness_um, thickness_mm. Errors
+ * name the JSON path. */
 BIREF_API biref_status biref_stack_parse(const char *text, size_t len, biref_stack *out, char *msg, size_t msg_len);
 /* BIREF_ERR_IO when the file cannot be read; otherwise as biref_stack_parse. */
 BIREF_API biref_status biref_stack_load(const char *path, biref_stack *out, char *msg, size_t msg_len);
 
 /* Everything about a stack at one angle of incidence that does not depend on the wavelength.
  * Interface j separates medium j (above) from medium j + 1 (below); medium 0 and medium
- * n_layers + 1 are the surround. Plain data (about 24 KB), no allocation. */
+ * n_layers + 1 are the surround. Plain data (about 29 KB), no allocation. A stack with layers of
+ * a dispersive material depends on the wavelength everywhere: its state holds the indices at
+ * lambda_nm and a copy of the stack, and biref_stack_jones_at prepares it anew at any other
+ * wavelength. */
 typedef struct {
     double theta, K, eta_i;
     int n_layers;
@@ -67,14 +86,25 @@ typedef struct {
      * relative to a unit incident wave; 0 for evanescent modes. */
     double flux[BIREF_STACK_MAX_LAYERS][4];
     int evanescent; /* number of layers with an evanescent mode */
+    int dispersive;   /* layers of a dispersive material: the above are at lambda_nm */
+    double lambda_nm; /* dispersive: the wavelength of the indices above (0 otherwise) */
+    biref_stack stack; /* dispersive: the stack, to be prepared at other wavelengths */
 } biref_stack_state;
 
+/* The wavelength at which biref_stack_prepare takes the indices of dispersive layers (nm). */
+#define BIREF_STACK_REFERENCE_NM 550.0
+
 /* Per-sample entry point: BIREF_ERR_INVALID when the stack fails biref_stack_check or the angle
- * biref_theta_check, BIREF_ERR_SINGULAR when an interface's boundary system is singular. */
+ * biref_theta_check (or a material is unphysical at the wavelength), BIREF_ERR_SINGULAR when an
+ * interface's boundary system is singular. Dispersive layers take their indices at
+ * BIREF_STACK_REFERENCE_NM; biref_stack_prepare_at at lambda_nm. */
 BIREF_API biref_status biref_stack_prepare(const biref_stack *stack, double theta_rad, biref_stack_state *st);
+BIREF_API biref_status biref_stack_prepare_at(const biref_stack *stack, double theta_rad, double lambda_nm,
+                                              biref_stack_state *st);
 
 /* All orders of internal reflection in every layer, summed exactly (docs/STACKS.md: the
- * transfer matrix in its scattering form). Either output may be NULL. */
+ * transfer matrix in its scattering form). Either output may be NULL. A dispersive state is
+ * prepared anew at lambda_nm unless it was prepared there (NaN where a material is unphysical). */
 BIREF_API void biref_stack_jones_at(const biref_stack_state *st, double lambda_nm, biref_jones *T, biref_jones *R);
 
 /* prepare + evaluate; the codes of biref_stack_prepare, BIREF_ERR_INVALID for a bad wavelength. */
@@ -83,7 +113,7 @@ BIREF_API biref_status biref_stack_jones(const biref_stack *stack, double theta_
 
 /* Independent reference: the product of the layers' 4x4 Berreman transfer matrices,
  * eigen-decomposed numerically (as biref_slab_jones_tmm, whose codes it returns; the growth
- * limit applies to the whole stack). */
+ * limit applies to the whole stack); dispersive layers at lambda_nm (biref_stack_at). */
 BIREF_API biref_status biref_stack_jones_tmm(const biref_stack *stack, double theta_rad, double lambda_nm,
                                              biref_jones *T, biref_jones *R);
 

@@ -323,10 +323,29 @@ def _stack_layers(st):
     out = []
     for i in range(st.n_layers):
         l = st.layers[i]
-        d = {"eta": l.eta_o} if l.isotropic else {"eta_o": l.eta_o, "eta_e": l.eta_e, "axis": list(l.axis)}
+        if l.material != _ffi.NULL:
+            info = _ffi.new("biref_material_info *")
+            _lib.biref_material_get_info(l.material, info)
+            d = {"material": _ffi.string(info.name).decode()}
+            if not l.isotropic:
+                d["axis"] = list(l.axis)
+        elif l.isotropic:
+            d = {"eta": l.eta_o}
+        else:
+            d = {"eta_o": l.eta_o, "eta_e": l.eta_e, "axis": list(l.axis)}
         d["thickness_nm"] = l.thickness_nm
         out.append(d)
     return out
+
+
+def _stack_check_band(sk, lo, hi):
+    """Refuses wavelengths where a dispersive layer's material is unphysical, with its reason."""
+    for i in range(sk.n_layers):
+        m = sk.layers[i].material
+        if m != _ffi.NULL:
+            msg = _ffi.new("char[]", 256)
+            if _lib.biref_material_check_band(m, lo, hi, msg, 256) != 0:
+                raise BirefError(f"stack: layers[{i}]: {_ffi.string(msg).decode()}")
 
 
 def stack(stack, theta_deg=0.0, lambda_nm=550.0, method="exact"):
@@ -345,6 +364,8 @@ def stack(stack, theta_deg=0.0, lambda_nm=550.0, method="exact"):
         raise ValueError("lambda_nm: must be positive")
     st = _ffi.new("biref_stack_state *")
     _check(_lib.biref_stack_prepare(sk, theta, st), "stack")
+    if _lib.biref_stack_dispersive(sk):
+        _stack_check_band(sk, float(lam.min()), float(lam.max()))
     T = _ffi.new("biref_jones *")
     R = _ffi.new("biref_jones *")
     JT = _np.empty(lam.shape + (2, 2), dtype=complex)

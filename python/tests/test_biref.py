@@ -89,6 +89,23 @@ def test_stack_of_one_layer_is_the_slab_and_arrays_broadcast():
         biref.stack(one, method="magic")
 
 
+def test_stack_of_a_dispersive_layer_is_the_material_slab():
+    lam = np.linspace(400, 700, 7)
+    one = {"eta_i": 1.0, "layers": [{"material": "calcite", "axis": [0.3, 0.5, 0.8], "thickness_um": 12}]}
+    v = biref.stack(one, theta_deg=30, lambda_nm=lam)
+    s = biref.slab(material="calcite", axis=(0.3, 0.5, 0.8), thickness_um=12, theta_deg=30, lambda_nm=lam)
+    for d in ("T", "R"):
+        for a in "sp":
+            for b in "sp":
+                np.testing.assert_allclose(v[d][a][b], s[d][a][b], atol=1e-12)
+    assert v["input"]["layers"][0]["material"] == "calcite"
+    with pytest.raises(ValueError, match="layers\\[0\\].material: unknown material"):
+        biref.stack({"layers": [{"material": "unobtainium", "axis": [0, 0, 1], "thickness_um": 1}]})
+    path = os.path.join(ROOT, "examples", "stacks", "quartz_zero_order_halfwave.json")
+    got = biref.stack_spectrum(path, polarization="s", analyzer="p")
+    assert got["expansion"]["fallback"] and got["expansion"]["reason"].startswith("dispersion")
+
+
 @needs_cli
 def test_stack_spectrum_matches_cli():
     path = os.path.join(ROOT, "examples", "stacks", "film_on_glass.json")

@@ -281,12 +281,15 @@ biref_status biref_slab_jones_tmm(const biref_slab *slab, double theta_rad, doub
     return tmm_boundary(n, theta_rad, B, T, R);
 }
 
-biref_status biref_stack_jones_tmm(const biref_stack *stack, double theta_rad, double lambda_nm, biref_jones *T,
+biref_status biref_stack_jones_tmm(const biref_stack *dispersive, double theta_rad, double lambda_nm, biref_jones *T,
                                    biref_jones *R)
 {
-    if (biref_stack_check(stack, NULL, 0) != BIREF_OK || !tmm_finite_positive(lambda_nm) || !isfinite(theta_rad) ||
-        theta_rad < 0.0 || theta_rad >= tmm_half_pi)
+    biref_stack at;
+    if (biref_stack_check(dispersive, NULL, 0) != BIREF_OK || !tmm_finite_positive(lambda_nm) ||
+        !isfinite(theta_rad) || theta_rad < 0.0 || theta_rad >= tmm_half_pi ||
+        biref_stack_at(dispersive, lambda_nm, &at) != BIREF_OK)
         return BIREF_ERR_INVALID;
+    const biref_stack *stack = &at;
     const double n = stack->eta_i, K = n * sin(theta_rad);
     double complex B[TMM_N * 2];
     tmm_transmitted(n, theta_rad, B);

@@ -16,6 +16,17 @@
 
 static biref_status layer_check(const biref_layer *l, int i, char *msg, size_t msg_len)
 {
+    if (l->material) {
+        biref_material_info info;
+        biref_material_get_info(l->material, &info);
+        char why[128] = "";
+        if (!l->isotropic && !info.isotropic && biref_check_axis(l->axis, why, sizeof why) != BIREF_OK)
+            return biref_fail(msg, msg_len, "layers[%d]: %s", i, why);
+        if (!isfinite(l->thickness_nm) || l->thickness_nm <= 0.0)
+            return biref_fail(msg, msg_len, "layers[%d]: thickness must be a positive finite length (got %g nm)", i,
+                              l->thickness_nm);
+        return BIREF_OK;
+    }
     char name[48];
     snprintf(name, sizeof name, "layers[%d].%s", i, l->isotropic ? "eta" : "eta_o");
     biref_status s = biref_check_index(name, l->eta_o, msg, msg_len);
@@ -58,6 +69,37 @@ void biref_stack_from_slab(const biref_slab *slab, biref_stack *out)
     l->thickness_nm = slab->thickness_nm;
 }
 
+int biref_stack_dispersive(const biref_stack *stack)
+{
+    for (int i = 0; i < stack->n_layers && i < BIREF_STACK_MAX_LAYERS; i++)
+        if (stack->layers[i].material) return 1;
+    return 0;
+}
+
+biref_status biref_stack_at(const biref_stack *stack, double lambda_nm, biref_stack *out)
+{
+    if (biref_check_lambda(lambda_nm, NULL, 0) != BIREF_OK || stack->n_layers < 1 ||
+        stack->n_layers > BIREF_STACK_MAX_LAYERS)
+        return BIREF_ERR_INVALID;
+    out->eta_i = stack->eta_i;
+    out->n_layers = stack->n_layers;
+    for (int i = 0; i < stack->n_layers; i++) {
+        biref_layer *l = &out->layers[i];
+        *l = stack->layers[i];
+        if (!l->material) continue;
+        double n[2];
+        biref_status s = biref_material_indices(l->material, lambda_nm, n, NULL);
+        if (s != BIREF_OK) return s;
+        biref_material_info info;
+        biref_material_get_info(l->material, &info);
+        l->isotropic = l->isotropic || info.isotropic;
+        l->eta_o = n[0];
+        l->eta_e = l->isotropic ? n[0] : n[1];
+        l->material = NULL;
+    }
+    return BIREF_OK;
+}
+
 /* Power across y per unit amplitude, Re(E* x H)_y, of each mode (0 when evanescent). */
 static void mode_flux(const biref_modes *m, int evanescent_o, int evanescent_e, double incident, double out[4])
 {
@@ -68,7 +110,8 @@ static void mode_flux(const biref_modes *m, int evanescent_o, int evanescent_e, 
     }
 }
 
-biref_status biref_stack_prepare(const biref_stack *stack, double theta, biref_stack_state *st)
+/* The state of a stack without dispersive layers. */
+static biref_status prepare_constant(const biref_stack *stack, double theta, biref_stack_state *st)
 {
     biref_status s = biref_stack_check(stack, NULL, 0);
     if (s == BIREF_OK) s = biref_theta_check(theta, NULL, 0);
@@ -110,8 +153,46 @@ biref_status biref_stack_prepare(const biref_stack *stack, double theta, biref_s
     return BIREF_OK;
 }
 
+biref_status biref_stack_prepare_at(const biref_stack *stack, double theta, double lambda_nm, biref_stack_state *st)
+{
+    if (!stack || !st) return BIREF_ERR_INVALID;
+    if (!biref_stack_dispersive(stack)) return prepare_constant(stack, theta, st);
+    biref_stack at;
+    biref_status s = biref_stack_check(stack, NULL, 0);
+    if (s == BIREF_OK) s = biref_stack_at(stack, lambda_nm, &at);
+    if (s == BIREF_OK) s = prepare_constant(&at, theta, st);
+    if (s != BIREF_OK) return s;
+    st->dispersive = 1;
+    st->lambda_nm = lambda_nm;
+    st->stack = *stack;
+    return BIREF_OK;
+}
+
+biref_status biref_stack_prepare(const biref_stack *stack, double theta, biref_stack_state *st)
+{
+    return biref_stack_prepare_at(stack, theta, BIREF_STACK_REFERENCE_NM, st);
+}
+
+static void jones_nan(biref_jones *J)
+{
+    if (!J) return;
+    for (int i = 0; i < 2; i++)
+        for (int o = 0; o < 2; o++) J->m[i][o] = NAN;
+}
+
 void biref_stack_jones_at(const biref_stack_state *st, double lambda_nm, biref_jones *T, biref_jones *R)
 {
+    if (st->dispersive && lambda_nm != st->lambda_nm) {
+        /* n(λ) everywhere: modes, interfaces and optical paths at this wavelength. */
+        biref_stack_state at;
+        if (biref_stack_prepare_at(&st->stack, st->theta, lambda_nm, &at) != BIREF_OK) {
+            jones_nan(T);
+            jones_nan(R);
+            return;
+        }
+        biref_stack_jones_at(&at, lambda_nm, T, R);
+        return;
+    }
     const double k = 2.0 * M_PI / lambda_nm;
     const int n = st->n_layers;
     /* rho, tau: reflection (down-going -> up-going modes, both at the face) and transmission (to
@@ -141,7 +222,7 @@ biref_status biref_stack_jones(const biref_stack *stack, double theta, double la
 {
     if (biref_check_lambda(lambda_nm, NULL, 0) != BIREF_OK) return BIREF_ERR_INVALID;
     biref_stack_state st;
-    biref_status s = biref_stack_prepare(stack, theta, &st);
+    biref_status s = biref_stack_prepare_at(stack, theta, lambda_nm, &st);
     if (s != BIREF_OK) return s;
     biref_stack_jones_at(&st, lambda_nm, T, R);
     return BIREF_OK;

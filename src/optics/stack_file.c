@@ -56,7 +56,7 @@ static biref_status get_thickness(stack_ctx *c, const cJSON *obj, double *nm)
     static const double scale[3] = {1.0, 1e3, 1e6};
     int found = -1;
     for (int k = 0; k < 3; k++) {
-        double v;
+        double v = 0.0;
         int present;
         biref_status s = get_positive(c, obj, keys[k], 0, &v, &present);
         if (s != BIREF_OK) return s;
@@ -97,15 +97,49 @@ static biref_status get_axis(stack_ctx *c, const cJSON *obj, double axis[3])
     return BIREF_OK;
 }
 
+/* {"material": "quartz", "axis" or "azimuth_deg"}: a named dispersive material (docs/MATERIALS.md);
+ * an isotropic one takes no axis. */
+static biref_status parse_material_layer(stack_ctx *c, const cJSON *obj, const cJSON *mat, biref_layer *l)
+{
+    static const char *const fixed[] = {"eta", "eta_o", "eta_e"};
+    for (int k = 0; k < 3; k++)
+        if (cJSON_GetObjectItemCaseSensitive(obj, fixed[k]))
+            return fail_at(c, fixed[k], "given with material (the material gives the indices)");
+    if (!cJSON_IsString(mat)) return fail_at(c, "material", "must be the name of a material (biref material list)");
+    l->material = biref_material_find(mat->valuestring);
+    if (!l->material) {
+        char what[160];
+        snprintf(what, sizeof what, "unknown material '%.80s' (biref material list names them)", mat->valuestring);
+        return fail_at(c, "material", what);
+    }
+    biref_material_info info;
+    biref_material_get_info(l->material, &info);
+    if (info.isotropic) {
+        static const char *const axis[] = {"axis", "azimuth_deg"};
+        for (int k = 0; k < 2; k++)
+            if (cJSON_GetObjectItemCaseSensitive(obj, axis[k]))
+                return fail_at(c, axis[k], "an isotropic material has no optic axis");
+        l->isotropic = 1;
+        l->axis[1] = 1.0;
+        return BIREF_OK;
+    }
+    return get_axis(c, obj, l->axis);
+}
+
 static biref_status parse_layer(stack_ctx *c, const cJSON *obj, biref_layer *l)
 {
-    static const char *const keys[] = {"eta",  "eta_o",        "eta_e",        "axis",        "azimuth_deg",
-                                       "thickness_nm", "thickness_um", "thickness_mm", NULL};
+    static const char *const keys[] = {"eta",          "eta_o",        "eta_e",        "axis",     "azimuth_deg",
+                                       "thickness_nm", "thickness_um", "thickness_mm", "material", NULL};
     if (!cJSON_IsObject(obj)) return fail_at(c, "", "expected an object");
     int twice;
     const char *bad = biref_json_bad_key(obj, keys, &twice);
     if (bad) return fail_at(c, bad, twice ? "given twice" : "unknown field");
     memset(l, 0, sizeof *l);
+    const cJSON *mat = cJSON_GetObjectItemCaseSensitive(obj, "material");
+    if (mat) {
+        biref_status s = parse_material_layer(c, obj, mat, l);
+        return s ? s : get_thickness(c, obj, &l->thickness_nm);
+    }
     int iso = cJSON_GetObjectItemCaseSensitive(obj, "eta") != NULL;
     biref_status s;
     if (iso) {

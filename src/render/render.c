@@ -41,7 +41,7 @@ static biref_status check_render_options(const biref_render_options *opt, char *
     return BIREF_OK;
 }
 
-/* Dispersive slabs: physical over the spectral band (one line, "slabs[i].material: ..."). */
+/* Dispersive slabs and stack layers: physical over the spectral band (one line, "slabs[i].material: ..."). */
 static biref_status check_materials(const biref_spectral *sp, const biref_scene *scene, char *msg, size_t msg_len)
 {
     const biref_cmf_band *band = biref_spectral_band(sp);
@@ -50,6 +50,11 @@ static biref_status check_materials(const biref_spectral *sp, const biref_scene 
         char why[BIREF_MSG_SIZE];
         if (m && biref_material_check_band(m, band->lmin_nm, band->lmax_nm, why, sizeof why) != BIREF_OK)
             return biref_fail(msg, msg_len, "slabs[%d].material: %s", i, why);
+        for (int k = 0; k < scene->slabs[i].n_layers; k++) {
+            const biref_material *lm = scene->slabs[i].layers[k].material;
+            if (lm && biref_material_check_band(lm, band->lmin_nm, band->lmax_nm, why, sizeof why) != BIREF_OK)
+                return biref_fail(msg, msg_len, "slabs[%d].layers[%d].material: %s", i, k, why);
+        }
     }
     return BIREF_OK;
 }
@@ -187,9 +192,9 @@ static float stored(double v, long *nonfinite)
     return (float)(ok ? v : 0.0);
 }
 
-/* One sample per pixel, through the centres of pixels x0 .. x0 + n - 1 of row y (n <= RENDER_TILE):
- * each sample's colour is its pixel's (the box filter of one sample). */
-static void render_centres(const biref_renderer *r, render_tile *tile, int x0, int n, int y, float *row,
+/* One sample per pixel, through the centres of pixels x0 .. x0 + n - 1 of row y (n <= RENDER_TILE),
+ * stored from out (pixel x0): each sample's colour is its pixel's (the box filter of one sample). */
+static void render_centres(const biref_renderer *r, render_tile *tile, int x0, int n, int y, float *out,
                            render_tile_counts *counts)
 {
     tile->n = n;
@@ -202,14 +207,15 @@ static void render_centres(const biref_renderer *r, render_tile *tile, int x0, i
     const double e = r->exposure;
     for (int j = 0; j < tile->n; j++) {
         counts->slab_pixels += tile->slab[j] >= 0.0;
-        for (int c = 0; c < 3; c++) row[3 * (size_t)(x0 + j) + c] = stored(tile->xyz[c][j] * e, &counts->nonfinite);
+        for (int c = 0; c < 3; c++) out[3 * (size_t)j + c] = stored(tile->xyz[c][j] * e, &counts->nonfinite);
     }
 }
 
-/* Pixels x0 .. x0 + np - 1 of row y, K x K stratified jittered samples each (K > 1), box-filtered; with the prefilter each sample's footprint is its stratum
+/* Pixels x0 .. x0 + np - 1 of row y, stored from out, K x K stratified jittered samples each (K > 1),
+ * box-filtered; with the prefilter each sample's footprint is its stratum
  * (steps of 1/K pixel to the neighbouring samples). The samples go through tiles in pixel order
  * (a pixel's may span several tiles), so each pixel sums its samples in one order. */
-static void render_pixels(const biref_renderer *r, render_tile *tile, int x0, int np, int y, float *row,
+static void render_pixels(const biref_renderer *r, render_tile *tile, int x0, int np, int y, float *out,
                           render_tile_counts *counts)
 {
     const int K = r->opt.supersample, KK = K * K;
@@ -235,32 +241,35 @@ static void render_pixels(const biref_renderer *r, render_tile *tile, int x0, in
     for (int p = 0; p < np; p++) {
         counts->slab_pixels += hit[p];
         for (int c = 0; c < 3; c++)
-            row[3 * (size_t)(x0 + p) + c] = stored(acc[p][c] / (double)KK * e, &counts->nonfinite);
+            out[3 * (size_t)p + c] = stored(acc[p][c] / (double)KK * e, &counts->nonfinite);
     }
 }
 
-/* A row in groups of pixels whose samples fill a tile (one pixel at a time when its samples need
- * more than one). */
-static void render_row(const biref_renderer *r, int y, float *row, render_tile_counts *counts)
+/* Pixels x_begin .. x_end - 1 of row y into out (pixel x_begin first), in groups of pixels whose
+ * samples fill a tile (one pixel at a time when its samples need more than one). Every pixel's
+ * value is the same whatever group it falls in (render_tile_lanes.inc), so a span of a row gives
+ * the bits of the whole row. */
+static void render_span(const biref_renderer *r, int y, int x_begin, int x_end, float *out, render_tile_counts *counts)
 {
     const int KK = r->opt.supersample * r->opt.supersample;
     const int group = KK <= RENDER_TILE ? RENDER_TILE / KK : 1;
     render_tile tile;
-    for (int x0 = 0; x0 < r->cam.width; x0 += group) {
-        const int n = r->cam.width - x0 < group ? r->cam.width - x0 : group;
+    for (int x0 = x_begin; x0 < x_end; x0 += group) {
+        const int n = x_end - x0 < group ? x_end - x0 : group;
+        float *o = out + 3 * (size_t)(x0 - x_begin);
         if (KK == 1)
-            render_centres(r, &tile, x0, n, y, row, counts);
+            render_centres(r, &tile, x0, n, y, o, counts);
         else
-            render_pixels(r, &tile, x0, n, y, row, counts);
+            render_pixels(r, &tile, x0, n, y, o, counts);
     }
 }
 
-biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_end, int y_step, float *xyz,
-                                   biref_progress_fn progress, void *progress_user, biref_render_stats *stats)
+/* Rows y_begin + k y_step (k < rows), pixels x_begin .. x_end - 1 of each, row k stored from
+ * out + k stride: the parallel loop of every render entry. */
+static biref_status render_rows(const biref_renderer *r, int x_begin, int x_end, int y_begin, int rows, int y_step,
+                                float *out, size_t stride, biref_progress_fn progress, void *progress_user,
+                                biref_render_stats *stats)
 {
-    if (!r || !xyz || y_step < 1 || y_begin < 0 || y_end > r->cam.height || y_begin > y_end) return BIREF_ERR_INVALID;
-    const int W = r->cam.width;
-    const int rows = (y_end - y_begin + y_step - 1) / y_step;
     const int threads = r->opt.threads > 0 ? r->opt.threads : omp_get_max_threads();
     long slab_pixels = 0, fallbacks = 0, nonfinite = 0;
     int done = 0;
@@ -269,10 +278,8 @@ biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_e
      * the slab (cheap) against rows that hit it (expensive). */
 #pragma omp parallel for schedule(dynamic) num_threads(threads) reduction(+ : slab_pixels, fallbacks, nonfinite)
     for (int k = 0; k < rows; k++) {
-        const int y = y_begin + k * y_step;
-        float *row = xyz + (size_t)y * W * 3;
         render_tile_counts c = {0, 0, 0};
-        render_row(r, y, row, &c);
+        render_span(r, y_begin + k * y_step, x_begin, x_end, out + (size_t)k * stride, &c);
         slab_pixels += c.slab_pixels;
         fallbacks += c.fallbacks;
         nonfinite += c.nonfinite;
@@ -285,12 +292,31 @@ biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_e
         }
     }
     if (stats) {
-        stats->pixels = (long)rows * W;
+        stats->pixels = (long)rows * (x_end - x_begin);
         stats->slab_pixels = slab_pixels;
         stats->fallback_evals = fallbacks;
     }
     /* A non-finite colour is never an output: such pixels are stored as 0 and reported. */
     return nonfinite ? BIREF_ERR_ILLCOND : BIREF_OK;
+}
+
+biref_status biref_renderer_render(const biref_renderer *r, int y_begin, int y_end, int y_step, float *xyz,
+                                   biref_progress_fn progress, void *progress_user, biref_render_stats *stats)
+{
+    if (!r || !xyz || y_step < 1 || y_begin < 0 || y_end > r->cam.height || y_begin > y_end) return BIREF_ERR_INVALID;
+    const int W = r->cam.width;
+    const int rows = (y_end - y_begin + y_step - 1) / y_step;
+    return render_rows(r, 0, W, y_begin, rows, y_step, xyz + (size_t)y_begin * W * 3, (size_t)y_step * W * 3, progress,
+                       progress_user, stats);
+}
+
+biref_status biref_renderer_render_rect(const biref_renderer *r, int x, int y, int width, int height, float *xyz,
+                                        size_t row_stride, biref_render_stats *stats)
+{
+    if (!r || !xyz || x < 0 || y < 0 || width < 1 || height < 1 || width > r->cam.width - x ||
+        height > r->cam.height - y || row_stride < 3 * (size_t)width)
+        return BIREF_ERR_INVALID;
+    return render_rows(r, x, x + width, y, height, 1, xyz, row_stride, NULL, NULL, stats);
 }
 
 biref_status biref_render_image(const biref_renderer *r, float *xyz, biref_progress_fn progress, void *progress_user,

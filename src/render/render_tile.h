@@ -3,8 +3,9 @@
  * rays, the nearest-slab test, the slab hits' frames (ray_frame.h, shared with the shader's
  * biref_shading_frames), the radiance look-ups and the colours run in branch-free loops across the
  * samples (which the compiler vectorises); the hits go to the shader together (the analytic
- * method's packet kernel), and the hits it declines (world-fixed polarizers among them) to the
- * shader one by one from the same frames.
+ * method's packet kernel, each hit with its light resolved in its frames when the light is
+ * world-fixed: packet_light.h), and the hits it declines to the shader one by one from the same
+ * frames.
  *
  * The hits are compact (hit k belongs to sample px[k]; hits on the same slab are consecutive) so
  * that a per-hit input the kernel may need, such as a prefilter footprint from the neighbouring
@@ -35,8 +36,10 @@ typedef struct {
     int n_hits, px[RENDER_TILE], n_runs, run_slab[RENDER_TILE], run_start[RENDER_TILE + 1];
     render_lanes3 from, hdir, mirror; /* background: camera origin and ray; hits: hit point, ray, mirror */
     render_lanes3 axis;               /* optic axis in the hit's transmission frame */
+    render_lanes3 x;                  /* the transmission frame's x axis (s of both waves) */
     double c[RENDER_TILE];            /* cos(theta), clamped as the frames clamp theta */
     biref_packet_hit in[RENDER_TILE]; /* the kernel's input */
+    biref_packet_hit_light light[RENDER_TILE]; /* each hit's light, when the shader's is resolved per hit */
     double T[RENDER_TILE][3], R[RENDER_TILE][3];
     unsigned char scalar[RENDER_TILE];
     biref_opl_footprint fp[RENDER_TILE]; /* with the prefilter: hit k's footprint (footprint_lanes.inc) */

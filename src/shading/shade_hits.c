@@ -14,6 +14,8 @@ static biref_status shade_chunk(const biref_shader *sh, size_t n, const biref_su
 {
     biref_hit_frames fr[CHUNK];
     biref_packet_hit in[CHUNK];
+    biref_packet_hit_light lights[CHUNK];
+    const biref_packet_light_source *ls = biref_shader_packet_light(sh);
     biref_status st[CHUNK];
     unsigned char scalar[CHUNK];
     size_t m = 0, idx[CHUNK];
@@ -24,10 +26,14 @@ static biref_status shade_chunk(const biref_shader *sh, size_t n, const biref_su
         const biref_slab *b = &fr[k].slab;
         in[m] = (biref_packet_hit){b->eta_o, b->eta_e, {b->axis[0], b->axis[1], b->axis[2]}, b->thickness_nm,
                                    b->eta_i, b->eta_i * sin(fr[k].theta)};
+        if (ls) {
+            const double d[3] = {-fr[k].k_view[0], -fr[k].k_view[1], -fr[k].k_view[2]};
+            biref_packet_light_of(ls, fr[k].x_T, d, fr[k].mirror, &lights[m]);
+        }
         idx[m++] = k;
     }
     double pT[CHUNK][3], pR[CHUNK][3];
-    biref_shader_packet(sh, in, NULL, m, pT, pR, scalar);
+    biref_shader_packet(sh, in, ls ? lights : NULL, NULL, m, pT, pR, scalar);
     for (size_t j = 0; j < m; j++) {
         const size_t k = idx[j];
         if (scalar[j]) {

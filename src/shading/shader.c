@@ -41,6 +41,28 @@ static biref_status probe(const biref_integrator *it, const biref_light *l, char
                       (unsigned)m < 4 ? names[m] : "chosen");
 }
 
+/* The light's packet form (packet_light.h) when its fixed matrices are real; 0 otherwise. */
+static int packet_source(const biref_light *l, biref_packet_light_source *out)
+{
+    static const double complex ID[2][2] = {{1, 0}, {0, 1}};
+    const double complex(*P)[2] = l->has_analyzer ? (const double complex(*)[2])l->P : ID;
+    int real = 1;
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++) {
+            real &= l->world_polarizer || (cimag(l->C[i][j]) == 0.0 && creal(l->C[i][j]) == creal(l->C[j][i]));
+            real &= l->world_analyzer || cimag(P[i][j]) == 0.0;
+            out->P[2 * i + j] = creal(P[i][j]);
+        }
+    out->C[0] = creal(l->C[0][0]);
+    out->C[1] = creal(l->C[0][1]);
+    out->C[2] = creal(l->C[1][1]);
+    out->polarizer = l->world_polarizer;
+    out->analyzer = l->world_analyzer;
+    memcpy(out->pol, l->polarizer_axis, sizeof out->pol);
+    memcpy(out->ana, l->analyzer_axis, sizeof out->ana);
+    return real;
+}
+
 biref_status biref_shader_create(const biref_spectral *sp, const biref_integrator_options *opt,
                                  const biref_light *light, biref_shader **out, char *msg, size_t msg_len)
 {
@@ -60,6 +82,7 @@ biref_status biref_shader_create(const biref_spectral *sp, const biref_integrato
     sh->light = *light;
     sh->world_fixed = biref_light_is_world_fixed(light);
     sh->passthrough = biref_light_passthrough(light);
+    sh->packet_lit = !light->sp_model && packet_source(light, &sh->packet_light);
     biref_status s = biref_integrator_create(sp, opt ? opt : &defaults, &sh->it, msg, msg_len);
     if (s == BIREF_OK) s = probe(sh->it, light, msg, msg_len);
     if (s != BIREF_OK) {
@@ -142,13 +165,21 @@ biref_status biref_shader_eval_material(const biref_shader *sh, const biref_mate
     return s;
 }
 
-void biref_shader_packet(const biref_shader *sh, const biref_packet_hit *hits, const biref_opl_footprint *fp,
-                         size_t n, double (*T)[3], double (*R)[3], unsigned char *scalar)
+const biref_packet_light_source *biref_shader_packet_light(const biref_shader *sh)
 {
-    if (sh->world_fixed)
-        memset(scalar, 1, n); /* every hit has its own light */
-    else
+    return sh->packet_lit ? &sh->packet_light : NULL;
+}
+
+void biref_shader_packet(const biref_shader *sh, const biref_packet_hit *hits, const biref_packet_hit_light *lights,
+                         const biref_opl_footprint *fp, size_t n, double (*T)[3], double (*R)[3],
+                         unsigned char *scalar)
+{
+    if (sh->light.sp_model)
         biref_integrate_packet_hits(sh->it, hits, fp, n, &sh->light, T, R, scalar);
+    else if (sh->packet_lit && lights)
+        biref_integrate_packet_hits_lit(sh->it, hits, fp, n, lights, T, R, scalar);
+    else
+        memset(scalar, 1, n); /* no real per-hit form: one by one */
 }
 
 double biref_shader_background(const biref_shader *sh, const double k[3], const double normal[3],

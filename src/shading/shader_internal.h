@@ -7,6 +7,7 @@
 #include <math.h>
 
 #include "biref/shading.h"
+#include "shading/packet_light.h"
 #include "spectral/integrator_internal.h"
 #include "spectral/phase_prefilter.h"
 
@@ -19,6 +20,11 @@ struct biref_shader {
     biref_light light;
     int world_fixed;    /* the light has a world-fixed polarizer or analyzer */
     double passthrough; /* not world-fixed: what the light passes with no slab, the same for every ray */
+    /* A light outside the paper's s/p model with real matrices (world-fixed linear polarizers,
+     * linear Stokes light and analyzers) in the packet kernel's form, resolved per hit
+     * (packet_light.h); packet_lit 0 when the light is the paper's or has complex matrices. */
+    int packet_lit;
+    biref_packet_light_source packet_light;
 };
 
 /* The paper's frames of the unit view ray dir at a hit on a slab with unit normal, unit tangent
@@ -42,11 +48,18 @@ biref_status biref_shader_eval_stack(const biref_shader *sh, const biref_hit_fra
 void biref_shader_side_light(const biref_shader *sh, const double x[3], const double k_in[3], const double k_out[3],
                              biref_light *out);
 
+/* The shader's light per hit in the packet kernel's form (packet_light.h), or NULL when the hits need
+ * none (the paper's s/p light, the same for every hit) or the light has no real form (circular
+ * light or analyzers: those hits go one by one). */
+const biref_packet_light_source *biref_shader_packet_light(const biref_shader *sh);
+
 /* Hits in the packet kernel's form (integrator_internal.h): T, R of the hits whose scalar[k] is 0;
- * scalar[k] = 1 for the hits to evaluate with biref_shader_eval (every hit under a world-fixed
- * light). */
-void biref_shader_packet(const biref_shader *sh, const biref_packet_hit *hits, const biref_opl_footprint *fp,
-                         size_t n, double (*T)[3], double (*R)[3], unsigned char *scalar);
+ * scalar[k] = 1 for the hits to evaluate with biref_shader_eval. lights: each hit's light from
+ * biref_packet_light_of with biref_shader_packet_light's source (NULL when that is NULL); without
+ * them a light outside the paper's model sends every hit one by one. */
+void biref_shader_packet(const biref_shader *sh, const biref_packet_hit *hits, const biref_packet_hit_light *lights,
+                         const biref_opl_footprint *fp, size_t n, double (*T)[3], double (*R)[3],
+                         unsigned char *scalar);
 
 /* The factor of light that reaches the viewer along k without a slab, in the basis whose s is
  * perpendicular to k and the normal (the tangent when k is along the normal). */

@@ -52,23 +52,6 @@ static void scale_row(double complex M[2][2], int row, double complex f)
     M[row][1] *= f;
 }
 
-/* Twice the RMS width of band j in wavenumber, S((k − k_j)², Λ_j)^½ (1/nm). */
-static double band_k_width(const biref_spectral *sp, int j)
-{
-    const double lmin = sp->cfg.lambda_min_nm, lmax = sp->cfg.lambda_max_nm;
-    const int n = (int)ceil(lmax - lmin);
-    const double dl = (lmax - lmin) / n;
-    double var = 0.0, w = 0.0;
-    for (int i = 0; i < n; i++) {
-        const double l = lmin + (i + 0.5) * dl, dk = 2.0 * M_PI / l - sp->k_centroid[j];
-        double lam[3];
-        biref_cmf_band_eval(&sp->band, l, lam);
-        var += lam[j] * dk * dk;
-        w += lam[j];
-    }
-    return w > 0.0 ? 2.0 * sqrt(var / w) : 0.0;
-}
-
 /* The birefringent lags' phases k·(e − o) (down, up, and both) at λ, for their curvature in k. */
 static void lag_phases(const biref_slab_state *st, double lambda, double out[3])
 {
@@ -96,7 +79,7 @@ static biref_status band_curvature(const biref_spectral *sp, const biref_materia
     lag_phases(mid, lambda, pm);
     lag_phases(&b, lambda + H, pb);
     const double ka = 2.0 * M_PI / (lambda - H), km = 2.0 * M_PI / lambda, kb = 2.0 * M_PI / (lambda + H);
-    const double dk = band_k_width(sp, j);
+    const double dk = biref_spectral_band_k_width(sp, j);
     *quad = 0.0;
     for (int l = 0; l < 3; l++) {
         /* second derivative through three unevenly spaced points (kb < km < ka) */

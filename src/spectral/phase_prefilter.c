@@ -10,74 +10,17 @@
 #include <complex.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
+#include "spectral/phase_tables.h"
 #include "spectral/spectral_internal.h"
 #include "spectral/table_build.h"
-
-/* Same quadrature as the point table (midpoint rule, relative error (phi' h)^2 / 24). */
-#define BUILD_DLAMBDA_NM 0.05
 
 struct biref_phase_prefilter {
     const biref_spectral *sp;
     double *table; /* [m][band][re, im, dre/dD, dim/dD] of q(D) = e^{-2 pi i nu_c D} Q(D) */
     double *packet_table; /* the same for the packet kernel (biref_table_packet_layout) */
 };
-
-/* Nodes per block of the parallel build. */
-#define BUILD_BLOCK_NODES 64
-
-/* Per wavelength sample: the band weights times the step, the rotation e^{2 pi i f step} from
- * node to node and the derivative factor 2 pi i f. */
-typedef struct {
-    double w[3];
-    double complex rot, dz;
-} build_sample;
-
-/* The table by the midpoint rule over the wavelengths, each node summing them in ascending
- * order. z runs through the nodes by one rotation per node; the rotation chain of each
- * wavelength is walked first (in parallel over wavelengths) to record z at every block's
- * first node, then the blocks are summed in parallel: the same products in the same order as
- * one serial pass, so the table is the same to the bit for any number of threads. */
-static biref_status build_prefilter_table(const biref_spectral *sp, double *table)
-{
-    const double lmin = sp->cfg.lambda_min_nm, lmax = sp->cfg.lambda_max_nm;
-    const int n = (int)ceil((lmax - lmin) / BUILD_DLAMBDA_NM);
-    const double dl = (lmax - lmin) / n;
-    const int blocks = (sp->nodes + BUILD_BLOCK_NODES - 1) / BUILD_BLOCK_NODES;
-    build_sample *smp = malloc((size_t)n * sizeof *smp);
-    double complex *z0 = malloc((size_t)n * (size_t)blocks * sizeof *z0);
-    if (!smp || !z0) {
-        free(smp);
-        free(z0);
-        return BIREF_ERR_NOMEM;
-    }
-#pragma omp parallel for schedule(static)
-    for (int i = 0; i < n; i++) {
-        double lambda = lmin + (i + 0.5) * dl, lam[3];
-        biref_cmf_band_eval(&sp->band, lambda, lam);
-        for (int j = 0; j < 3; j++) smp[i].w[j] = lam[j] * dl;
-        double f = 1.0 / lambda - sp->nu_c;
-        smp[i].rot = cexp(2.0 * M_PI * I * f * sp->step);
-        smp[i].dz = 2.0 * M_PI * I * f;
-        double complex z = lambda / (2.0 * M_PI * I);
-        for (int m = 0; m < sp->nodes; m++) {
-            if (m % BUILD_BLOCK_NODES == 0) z0[(size_t)i * blocks + m / BUILD_BLOCK_NODES] = z;
-            z *= smp[i].rot;
-        }
-    }
-#pragma omp parallel for schedule(dynamic)
-    for (int b = 0; b < blocks; b++) {
-        const int m0 = b * BUILD_BLOCK_NODES;
-        const int m1 = m0 + BUILD_BLOCK_NODES < sp->nodes ? m0 + BUILD_BLOCK_NODES : sp->nodes;
-        for (int i = 0; i < n; i++) {
-            (void)biref_table_accumulate(table + (size_t)m0 * 12, m1 - m0, smp[i].w, z0[(size_t)i * blocks + b],
-                                         smp[i].rot, smp[i].dz);
-        }
-    }
-    free(smp);
-    free(z0);
-    return BIREF_OK;
-}
 
 biref_status biref_phase_prefilter_create(const biref_spectral *sp, biref_phase_prefilter **out)
 {
@@ -86,12 +29,18 @@ biref_status biref_phase_prefilter_create(const biref_spectral *sp, biref_phase_
     biref_phase_prefilter *pf = calloc(1, sizeof *pf);
     if (!pf) return BIREF_ERR_NOMEM;
     pf->sp = sp;
-    pf->table = calloc((size_t)sp->nodes * 12, sizeof *pf->table);
+    pf->table = calloc((size_t)sp->nodes * BIREF_TABLE_ROW, sizeof *pf->table);
     if (!pf->table) {
         free(pf);
         return BIREF_ERR_NOMEM;
     }
-    if (build_prefilter_table(sp, pf->table) != BIREF_OK) {
+    /* The copy generated at build time for the default band, else by quadrature (phase_tables.h). */
+    const biref_phase_tables_builtin *gen = biref_phase_tables_builtin_for(&sp->cfg, sp->nodes);
+    biref_phase_grid grid;
+    biref_phase_grid_init(&grid, &sp->band, sp->cfg.lambda_min_nm, sp->cfg.lambda_max_nm);
+    if (gen)
+        memcpy(pf->table, gen->prefilter, (size_t)sp->nodes * BIREF_TABLE_ROW * sizeof *pf->table);
+    else if (biref_phase_table_prefilter(&grid, pf->table) != BIREF_OK) {
         biref_phase_prefilter_destroy(pf);
         return BIREF_ERR_NOMEM;
     }

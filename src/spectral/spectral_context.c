@@ -7,16 +7,9 @@
 
 #include "error.h"
 #include "spectral/spectral_internal.h"
+#include "spectral/phase_tables.h"
 #include "spectral/table_build.h"
 
-/* Table resolution. Hermite interpolation of the demodulated F has error ~ (2 pi B h)^4 / 384
- * with B = half the band width in 1/lambda (6e-4 / nm for 380-700 nm, at most 8e-4 / nm for the
- * widest band allowed, 360-830 nm): 3e-6 and 1e-5 at h = 50 nm. Beyond D_MAX the endpoint asymptotics are accurate to ~1e-5 (docs/PHYSICS.md). */
-#define TABLE_STEP_NM 50.0
-#define TABLE_D_MAX_NM 1.0e5
-/* Quadrature step for building the table: midpoint rule, whose error for e^{i phi} is the
- * multiplicative factor 1 + (phi' h)^2 / 24; at D_MAX, phi' h <= 0.22 rad. */
-#define BUILD_DLAMBDA_NM 0.05
 /* Quadrature step for the direct (reference) evaluation. */
 #define DIRECT_DLAMBDA_NM 0.002
 /* |S(e^{ikD})| <= (edge_lo + edge_hi) / (2 pi D) beyond the table; below this bound it is dropped. */
@@ -50,42 +43,25 @@ const char *biref_method_name(biref_method m)
 
 const biref_cmf_band *biref_spectral_band(const biref_spectral *sp) { return &sp->band; }
 
-/* Nodes per block of the table build: each block restarts the rotation e^{2 pi i f m step} from
- * cexp at its first node, so the table depends on this constant only, never on the threads. */
-#define BUILD_BLOCK_NODES 64
-
-/* The table by the midpoint rule. Blocks of nodes are independent (each sums the wavelengths in
- * the same ascending order), so they are built in parallel: the build is the largest serial
- * cost of a short render (~1 G instructions). Returns BIREF_ERR_NOMEM if the per-wavelength
- * weights cannot be allocated. */
-static biref_status build_table(biref_spectral *sp)
+/* The point table of a band: the copy generated at build time for the default band
+ * (phase_tables.h), else by quadrature. */
+static biref_status fill_table(biref_spectral *sp, const biref_phase_grid *g)
 {
-    const double lmin = sp->cfg.lambda_min_nm, lmax = sp->cfg.lambda_max_nm;
-    const int n = (int)ceil((lmax - lmin) / BUILD_DLAMBDA_NM);
-    const double dl = (lmax - lmin) / n;
-    double(*lam)[4] = malloc((size_t)n * sizeof *lam); /* band weights * dl and the frequency f */
-    if (!lam) return BIREF_ERR_NOMEM;
-    for (int i = 0; i < n; i++) {
-        double lambda = lmin + (i + 0.5) * dl, l3[3];
-        biref_cmf_band_eval(&sp->band, lambda, l3);
-        for (int j = 0; j < 3; j++) lam[i][j] = l3[j] * dl;
-        lam[i][3] = 1.0 / lambda - sp->nu_c; /* demodulated frequency of this sample */
+    const biref_phase_tables_builtin *gen = biref_phase_tables_builtin_for(&sp->cfg, g->nodes);
+    if (gen) {
+        memcpy(sp->table, gen->point, (size_t)g->nodes * BIREF_TABLE_ROW * sizeof *sp->table);
+        return BIREF_OK;
     }
-    const int blocks = (sp->nodes + BUILD_BLOCK_NODES - 1) / BUILD_BLOCK_NODES;
-#pragma omp parallel for schedule(dynamic)
-    for (int b = 0; b < blocks; b++) {
-        const int m0 = b * BUILD_BLOCK_NODES;
-        const int m1 = m0 + BUILD_BLOCK_NODES < sp->nodes ? m0 + BUILD_BLOCK_NODES : sp->nodes;
-        for (int i = 0; i < n; i++) {
-            const double f = lam[i][3];
-            double complex rot = cexp(2.0 * M_PI * I * f * sp->step);
-            double complex z = cexp(2.0 * M_PI * I * f * (m0 * sp->step));
-            double complex dz = 2.0 * M_PI * I * f; /* d/dD of e^{2 pi i f D} is dz times it */
-            (void)biref_table_accumulate(sp->table + (size_t)m0 * 12, m1 - m0, lam[i], z, rot, dz);
-        }
-    }
-    free(lam);
-    return BIREF_OK;
+    return biref_phase_table_point(g, sp->table);
+}
+
+const biref_phase_tables_builtin *biref_phase_tables_builtin_for(const biref_spectral_config *cfg, int nodes)
+{
+    const biref_phase_tables_builtin *gen = &biref_phase_tables_generated;
+    if (gen->nodes == 0 || gen->nodes != nodes || gen->cmf != cfg->cmf || gen->lambda_min_nm != cfg->lambda_min_nm ||
+        gen->lambda_max_nm != cfg->lambda_max_nm)
+        return NULL;
+    return gen;
 }
 
 biref_status biref_spectral_create(const biref_spectral_config *cfg_in, biref_spectral **out, char *msg, size_t msg_len)
@@ -118,16 +94,18 @@ biref_status biref_spectral_create(const biref_spectral_config *cfg_in, biref_sp
         free(sp);
         return s;
     }
-    sp->nu_c = 0.5 * (1.0 / cfg.lambda_min_nm + 1.0 / cfg.lambda_max_nm);
-    sp->step = TABLE_STEP_NM;
-    sp->nodes = (int)(TABLE_D_MAX_NM / TABLE_STEP_NM) + 1;
+    biref_phase_grid grid;
+    biref_phase_grid_init(&grid, &sp->band, cfg.lambda_min_nm, cfg.lambda_max_nm);
+    sp->nu_c = grid.nu_c;
+    sp->step = grid.step;
+    sp->nodes = grid.nodes;
     sp->d_max = (sp->nodes - 1) * sp->step;
-    sp->table = calloc((size_t)sp->nodes * 12, sizeof *sp->table);
+    sp->table = calloc((size_t)sp->nodes * BIREF_TABLE_ROW, sizeof *sp->table);
     if (!sp->table) {
         free(sp);
         return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
     }
-    if (build_table(sp) != BIREF_OK) {
+    if (fill_table(sp, &grid) != BIREF_OK) {
         biref_spectral_destroy(sp);
         return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
     }
@@ -159,7 +137,7 @@ biref_status biref_spectral_create(const biref_spectral_config *cfg_in, biref_sp
     for (int j = 0; j < 3; j++) edge = fmax(edge, sp->edge_lo[j] + sp->edge_hi[j]);
     sp->d_far = fmax(sp->d_max, edge / (2.0 * M_PI * FAR_FIELD_BOUND));
     /* Wavenumber centroids by the same fine midpoint rule. */
-    const int n = (int)ceil((cfg.lambda_max_nm - cfg.lambda_min_nm) / BUILD_DLAMBDA_NM);
+    const int n = (int)ceil((cfg.lambda_max_nm - cfg.lambda_min_nm) / BIREF_TABLE_BUILD_DLAMBDA_NM);
     const double dl = (cfg.lambda_max_nm - cfg.lambda_min_nm) / n;
     for (int i = 0; i < n; i++) {
         double lambda = cfg.lambda_min_nm + (i + 0.5) * dl, lam[3];

@@ -43,6 +43,10 @@ struct biref_spectral {
     biref_numeric_plan *coherent[BIREF_COHERENT_PLANS];
 };
 
+/* Twice the RMS width of colour-matching band j in wavenumber, S((k − k_j)², Λ_j)^½ (1/nm):
+ * the span over which a dispersive phase is linearised around the band's centroid k_j. */
+double biref_spectral_band_k_width(const biref_spectral *sp, int j);
+
 /* cos and sin of a small angle (|a| <= 0.7 rad) by Taylor series to a^13: error < 1e-13.
  * Saves a libm call per look-up on the per-sample path. */
 static inline void small_angle_cos_sin(double a, double *c, double *s)

@@ -26,9 +26,12 @@ biref_status biref_stack_numeric_adaptive(const biref_spectral *sp, const biref_
                                           double mixed[2][3], int *samples, int *converged);
 
 /* A path group: paths of one optical path phi (nm, real: no evanescent layer) leaving through one
- * face; M[in][out] their summed amplitude. */
+ * face; M[in][out] their summed amplitude. curv: for a dispersive stack's band, the curvature
+ * d²(k phi)/dk² of the group's phase (nm², that of its first path: merged paths have crossed the
+ * same legs in another order), else 0. */
 typedef struct {
     double phi;
+    double curv;
     double complex M[2][2];
 } biref_stack_group;
 
@@ -43,9 +46,27 @@ typedef struct {
 /* Follows the paths (o/e legs, reflections at every interface), merging equal optical paths,
  * until bound <= tolerance. reason set (status OK) when a layer is evanescent, when more than
  * max_groups groups leave one face, or when the bound is not met within the leg limit.
- * BIREF_ERR_NOMEM. Free with biref_stack_groups_free. */
-biref_status biref_stack_path_groups(const biref_stack_state *st, double tolerance, int max_groups,
-                                     biref_stack_groups *out);
+ * curv (NULL: none) gives each leg's phase curvature, [layer][BIREF_MODE_*] in nm², summed into
+ * the groups' curv. BIREF_ERR_NOMEM. Free with biref_stack_groups_free. */
+biref_status biref_stack_path_groups(const biref_stack_state *st, const double (*curv)[4], double tolerance,
+                                     int max_groups, biref_stack_groups *out);
+
+/* The pair sums of both faces' groups (stack_spectrum.c): out's pairs and the light's XYZ per
+ * face (light may be NULL). band < 0: all three bands; else only band j = band, and *err
+ * receives the estimated error of the linearised phases in that band (pairs' curvature
+ * differences over a band of width dk, each weighted by its amplitudes and band integral).
+ * BIREF_ERR_NOMEM. */
+biref_status biref_stack_face_sums(const biref_spectral *sp, const biref_stack_groups *g, const biref_light *light,
+                                   int band, double dk, biref_spectrum *out, double mixed[2][3], double *err);
+
+/* The expansion of a stack with dispersive layers, per band linearised around the band's
+ * centroid (stack_dispersive.c); its fallback to adaptive numeric integration is reported in
+ * info as for constant layers. BIREF_ERR_NOMEM, BIREF_ERR_INVALID (a material unphysical at a
+ * band's wavelength). */
+biref_status biref_stack_expansion_dispersive(const biref_spectral *sp, const biref_stack_state *st,
+                                              const biref_stack_spectrum_opts *o, const biref_light *light,
+                                              biref_spectrum *out, double mixed[2][3],
+                                              biref_stack_spectrum_info *info);
 void biref_stack_groups_free(biref_stack_groups *g);
 
 #endif

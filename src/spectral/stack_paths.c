@@ -20,6 +20,7 @@
 
 typedef struct {
     double phi;
+    double curv;         /* dispersive: d²(k phi)/dk² of the path so far (nm²), else 0 */
     double complex a[2]; /* amplitude per input s/p */
     int key;             /* layer * 4 + BIREF_MODE_* (down o/e, up o/e) */
 } packet;
@@ -46,7 +47,7 @@ static int packets_push(packets *v, packet x)
     return 0;
 }
 
-static int groups_push(groups *v, double phi, const double complex M[2][2])
+static int groups_push(groups *v, double phi, double curv, const double complex M[2][2])
 {
     if (v->n == v->cap) {
         int cap = v->cap ? 2 * v->cap : 64;
@@ -56,6 +57,7 @@ static int groups_push(groups *v, double phi, const double complex M[2][2])
     }
     biref_stack_group *g = &v->g[v->n++];
     g->phi = phi;
+    g->curv = curv;
     memcpy(g->M, M, sizeof g->M);
     return 0;
 }
@@ -117,6 +119,7 @@ static double packet_amplitude(const biref_stack_state *st, const packet *p)
 
 typedef struct {
     const biref_stack_state *st;
+    const double (*curv)[4]; /* per layer and mode, or NULL */
     packets *next;
     groups *exits; /* [0] bottom, [1] top */
     double drop, dropped;
@@ -127,10 +130,11 @@ static int scatter(step_ctx *c, const packet *p, const biref_complex f[2][2], in
 {
     if (exit >= 0) {
         const double complex M[2][2] = {{p->a[0] * f[m][0], p->a[0] * f[m][1]}, {p->a[1] * f[m][0], p->a[1] * f[m][1]}};
-        return groups_push(&c->exits[exit], p->phi, M);
+        return groups_push(&c->exits[exit], p->phi, p->curv, M);
     }
     for (int x = 0; x < 2; x++) {
-        packet q = {p->phi, {p->a[0] * f[m][x], p->a[1] * f[m][x]}, layer * 4 + (up ? BIREF_MODE_O_UP : 0) + x};
+        packet q = {p->phi, p->curv, {p->a[0] * f[m][x], p->a[1] * f[m][x]},
+                    layer * 4 + (up ? BIREF_MODE_O_UP : 0) + x};
         if (q.a[0] == 0.0 && q.a[1] == 0.0) continue; /* no o/e coupling (isotropic neighbours) */
         double amp = packet_amplitude(c->st, &q);
         if (amp < c->drop) {
@@ -151,6 +155,7 @@ static int step(step_ctx *c, const packets *cur)
         packet p = cur->p[k];
         const int layer = p.key / 4, mode = p.key % 4, up = mode >= BIREF_MODE_O_UP, m = mode & 1;
         p.phi += creal(up ? st->opl_up[layer][m] : st->opl_down[layer][m]);
+        if (c->curv) p.curv += c->curv[layer][mode];
         const biref_interface *f = &st->iface[up ? layer : layer + 1];
         int r;
         if (!up) {
@@ -173,19 +178,19 @@ static double live_amplitude(const biref_stack_state *st, const packets *v)
 }
 
 /* Follows the paths; returns 0, or -1 when out of memory. */
-static int follow(const biref_stack_state *st, double tolerance, int max_groups, groups exits[2],
-                  biref_stack_groups *out)
+static int follow(const biref_stack_state *st, const double (*curv)[4], double tolerance, int max_groups,
+                  groups exits[2], biref_stack_groups *out)
 {
     packets cur = {0}, next = {0};
-    step_ctx c = {st, &next, exits, tolerance * DROP, 0.0};
+    step_ctx c = {st, curv, &next, exits, tolerance * DROP, 0.0};
     int rc = 0;
     /* The direct reflection, and the two modes refracted into the first layer. */
-    if (groups_push(&exits[1], 0.0, (const double complex(*)[2])st->iface[0].r_down)) {
+    if (groups_push(&exits[1], 0.0, 0.0, (const double complex(*)[2])st->iface[0].r_down)) {
         rc = -1;
         goto done;
     }
     for (int m = 0; m < 2; m++) {
-        packet q = {0.0, {st->iface[0].t_down[0][m], st->iface[0].t_down[1][m]}, m};
+        packet q = {0.0, 0.0, {st->iface[0].t_down[0][m], st->iface[0].t_down[1][m]}, m};
         if ((q.a[0] != 0.0 || q.a[1] != 0.0) && packets_push(&cur, q)) {
             rc = -1;
             goto done;
@@ -222,8 +227,8 @@ done:
     return rc;
 }
 
-biref_status biref_stack_path_groups(const biref_stack_state *st, double tolerance, int max_groups,
-                                     biref_stack_groups *out)
+biref_status biref_stack_path_groups(const biref_stack_state *st, const double (*curv)[4], double tolerance,
+                                     int max_groups, biref_stack_groups *out)
 {
     memset(out, 0, sizeof *out);
     if (st->evanescent) {
@@ -231,7 +236,7 @@ biref_status biref_stack_path_groups(const biref_stack_state *st, double toleran
         return BIREF_OK;
     }
     groups exits[2] = {{0}, {0}};
-    int rc = follow(st, tolerance, max_groups, exits, out);
+    int rc = follow(st, curv, tolerance, max_groups, exits, out);
     for (int f = 0; f < 2 && !rc && !out->reason; f++) {
         merge_groups(&exits[f]);
         if (exits[f].n > max_groups) out->reason = "too many path groups";

@@ -29,10 +29,44 @@ static double complex light_pair(const biref_light *l, const double complex Ng[2
     return c;
 }
 
+/* Largest |M[i][o]| of a group. */
+static double group_amplitude(const biref_stack_group *g)
+{
+    double a = 0.0;
+    for (int i = 0; i < 2; i++)
+        for (int o = 0; o < 2; o++) a = fmax(a, cabs(g->M[i][o]));
+    return a;
+}
+
+/* Which bands a sum covers, and for a dispersive band the estimate of its linearisation error. */
+typedef struct {
+    int lo, hi;  /* bands lo .. hi - 1 */
+    double dk;   /* dispersive: the band's width in k (1/nm) */
+    double *err; /* dispersive: the error estimate accumulates here; NULL otherwise */
+} band_range;
+
+/* The error a pair's linearised phases leave in band j: the quadratic phase ½ |Δcurv| dk² that
+ * the line drops across the band, times the pair's amplitudes and the largest band integral its
+ * group delay reaches across the band (as the slab's criterion, analytic_dispersive.c). */
+static double pair_curvature_error(const biref_spectral *sp, const biref_stack_group *g, const biref_stack_group *h,
+                                   double delta, const band_range *r)
+{
+    const double dc = fabs(h->curv - g->curv);
+    const double w = group_amplitude(g) * group_amplitude(h) * dc * r->dk * r->dk;
+    if (!(w > 1e-12)) return 0.0;
+    double smax = 0.0;
+    for (int e = -1; e <= 1; e++) {
+        double C[3], S[3];
+        biref_spectral_phase_integrals(sp, fmax(0.0, delta + e * dc * r->dk), C, S);
+        smax = fmax(smax, hypot(C[r->lo], S[r->lo]));
+    }
+    return w * smax;
+}
+
 /* The band integrals of |sum_g M_g e^{ik phi_g}|^2 for one face: X[in][out][band] and, with a light,
  * its detected intensity (N: the groups' matrices with the analyzer applied, n of them). */
 static void pair_sums(const biref_spectral *sp, const biref_stack_group *g, int n, const biref_light *light,
-                      const double complex (*N)[2][2], double X[2][2][3], double mixed[3])
+                      const double complex (*N)[2][2], const band_range *r, double X[2][2][3], double mixed[3])
 {
     memset(X, 0, sizeof(double[2][2][3]));
     memset(mixed, 0, sizeof(double[3]));
@@ -40,34 +74,34 @@ static void pair_sums(const biref_spectral *sp, const biref_stack_group *g, int 
         for (int i = 0; i < 2; i++)
             for (int o = 0; o < 2; o++) {
                 double p = creal(g[a].M[i][o] * conj(g[a].M[i][o]));
-                for (int b = 0; b < 3; b++) X[i][o][b] += p;
+                for (int b = r->lo; b < r->hi; b++) X[i][o][b] += p;
             }
         if (light) {
             double p = creal(light_pair(light, N[a], N[a]));
-            for (int b = 0; b < 3; b++) mixed[b] += p;
+            for (int b = r->lo; b < r->hi; b++) mixed[b] += p;
         }
         for (int h = a + 1; h < n; h++) {
             const double delta = g[h].phi - g[a].phi; /* >= 0: sorted */
             if (delta > sp->d_far) break;           /* S is 0 there, and for every later h */
             double C[3], S[3];
             biref_spectral_phase_integrals(sp, delta, C, S);
+            if (r->err) *r->err += pair_curvature_error(sp, &g[a], &g[h], delta, r);
             /* 2 Re(c S(e^{-ik delta})) with S(e^{-ik delta}) = C - i S. */
             for (int i = 0; i < 2; i++)
                 for (int o = 0; o < 2; o++) {
                     double complex c = g[a].M[i][o] * conj(g[h].M[i][o]);
-                    for (int b = 0; b < 3; b++) X[i][o][b] += 2 * (creal(c) * C[b] + cimag(c) * S[b]);
+                    for (int b = r->lo; b < r->hi; b++) X[i][o][b] += 2 * (creal(c) * C[b] + cimag(c) * S[b]);
                 }
             if (light) {
                 double complex c = light_pair(light, N[a], N[h]);
-                for (int b = 0; b < 3; b++) mixed[b] += 2 * (creal(c) * C[b] + cimag(c) * S[b]);
+                for (int b = r->lo; b < r->hi; b++) mixed[b] += 2 * (creal(c) * C[b] + cimag(c) * S[b]);
             }
         }
     }
 }
 
-/* Both faces' pair sums; BIREF_ERR_NOMEM. */
-static biref_status face_sums(const biref_spectral *sp, const biref_stack_groups *g, const biref_light *light,
-                              biref_spectrum *out, double mixed[2][3])
+biref_status biref_stack_face_sums(const biref_spectral *sp, const biref_stack_groups *g, const biref_light *light,
+                                   int band, double dk, biref_spectrum *out, double mixed[2][3], double *err)
 {
     double complex(*N)[2][2] = NULL;
     const int most = g->n[0] > g->n[1] ? g->n[0] : g->n[1];
@@ -75,10 +109,12 @@ static biref_status face_sums(const biref_spectral *sp, const biref_stack_groups
         N = malloc((size_t)most * sizeof *N);
         if (!N) return BIREF_ERR_NOMEM;
     }
+    band_range r = {band < 0 ? 0 : band, band < 0 ? 3 : band + 1, dk, band < 0 ? NULL : err};
+    if (r.err) *r.err = 0.0;
     for (int f = 0; f < 2; f++) {
         if (light)
             for (int k = 0; k < g->n[f]; k++) analyzed(light, g->g[f][k].M, N[k]);
-        pair_sums(sp, g->g[f], g->n[f], light, (const double complex(*)[2][2])N, f ? out->R : out->T, mixed[f]);
+        pair_sums(sp, g->g[f], g->n[f], light, (const double complex(*)[2][2])N, &r, f ? out->R : out->T, mixed[f]);
     }
     free(N);
     return BIREF_OK;
@@ -127,15 +163,21 @@ static biref_status expansion(const biref_spectral *sp, const biref_stack_state 
                               const biref_stack_spectrum_opts *o, const biref_light *light, biref_spectrum *out,
                               double mixed[2][3], biref_stack_spectrum_info *info, char *msg, size_t msg_len)
 {
+    if (st->dispersive) {
+        biref_status s = biref_stack_expansion_dispersive(sp, st, o, light, out, mixed, info);
+        if (s == BIREF_ERR_NOMEM) return biref_fail_status(s, msg, msg_len, "out of memory");
+        if (s != BIREF_OK) return biref_fail_status(s, msg, msg_len, "a layer's material is unphysical in the band");
+        return s;
+    }
     biref_stack_groups g;
-    biref_status s = biref_stack_path_groups(st, o->tolerance, o->max_groups, &g);
+    biref_status s = biref_stack_path_groups(st, NULL, o->tolerance, o->max_groups, &g);
     if (s != BIREF_OK) return biref_fail_status(s, msg, msg_len, "out of memory");
     info->legs = g.legs;
     info->bound = g.bound;
     if (!g.reason) {
         info->groups[0] = g.n[0];
         info->groups[1] = g.n[1];
-        s = face_sums(sp, &g, light, out, mixed);
+        s = biref_stack_face_sums(sp, &g, light, -1, 0.0, out, mixed, NULL);
         biref_stack_groups_free(&g);
         return s == BIREF_OK ? s : biref_fail_status(s, msg, msg_len, "out of memory");
     }
@@ -165,6 +207,12 @@ biref_status biref_stack_spectrum(const biref_spectral *sp, const biref_stack_st
     if (!info) info = &local;
     memset(info, 0, sizeof *info);
     info->reason = "";
+    for (int i = 0; st->dispersive && i < st->stack.n_layers; i++) {
+        const biref_material *m = st->stack.layers[i].material;
+        char why[BIREF_MSG_SIZE];
+        if (m && biref_material_check_band(m, sp->cfg.lambda_min_nm, sp->cfg.lambda_max_nm, why, sizeof why) != BIREF_OK)
+            return biref_fail(msg, msg_len, "layers[%d]: %s", i, why);
+    }
     double mixed[2][3] = {{0, 0, 0}, {0, 0, 0}};
     if (o.method == BIREF_METHOD_EXPANSION) {
         s = expansion(sp, st, &o, light, out, mixed, info, msg, msg_len);

@@ -84,6 +84,52 @@ if worst > 1e-12:
     print(f"FAIL (one-layer stack spectrum vs slab): worst difference {worst:.3g}")
     sys.exit(1)
 PY
+# Layers of a dispersive material: a one-layer quartz stack is biref slab --material quartz at
+# every wavelength (1e-12); its numeric colours are the slab's; the material's fallback is reported.
+cat >"$tmpdir/quartz.json" <<'JSON'
+{"eta_i": 1.2, "layers": [{"material": "quartz", "axis": [0.3, 0.5, 0.8], "thickness_um": 40}]}
+JSON
+for lam in 400 550 690; do
+  "$BIREF" stack "$tmpdir/quartz.json" --theta-deg 30 --lambda-nm $lam --json >"$tmpdir/qstack.json"
+  "$BIREF" slab --material quartz --axis 0.3,0.5,0.8 --thickness-um 40 --eta-i 1.2 --theta-deg 30 \
+    --lambda-nm $lam --json >"$tmpdir/qslab.json"
+  python3 - "$tmpdir/qstack.json" "$tmpdir/qslab.json" $lam <<'PY' || fails=$((fails + 1))
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+worst = 0.0
+for key in ("T", "R", "jones_T", "jones_R"):
+    for i in "sp":
+        for o in "sp":
+            x, y = a[key][i][o], b[key][i][o]
+            x, y = (x if isinstance(x, list) else [x]), (y if isinstance(y, list) else [y])
+            worst = max(worst, max(abs(u - v) for u, v in zip(x, y)))
+if worst > 1e-12 or a["input"]["layers"][0]["material"] != "quartz":
+    print(f"FAIL (one-layer quartz stack vs slab --material at {sys.argv[3]} nm): worst difference {worst:.3g}")
+    sys.exit(1)
+PY
+done
+"$BIREF" spectrum --stack "$tmpdir/quartz.json" --theta-deg 30 --method numeric --spectral-samples 256 --json \
+  >"$tmpdir/qsstack.json"
+"$BIREF" spectrum --material quartz --axis 0.3,0.5,0.8 --thickness-um 40 --eta-i 1.2 --theta-deg 30 \
+  --method numeric --spectral-samples 256 --json >"$tmpdir/qsslab.json"
+python3 - "$tmpdir/qsstack.json" "$tmpdir/qsslab.json" <<'PY' || fails=$((fails + 1))
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+worst = max(abs(u - v) for d in ("T", "R") for i in "sp" for o in "sp" for u, v in zip(a[d][i][o], b[d][i][o]))
+if worst > 1e-12:
+    print(f"FAIL (one-layer quartz stack spectrum vs slab --material): worst difference {worst:.3g}")
+    sys.exit(1)
+PY
+expect_ok "dispersive stack expansion" spectrum --stack "$ex/quartz_zero_order_halfwave.json" --json
+expect_grep "dispersive fallback reported" '"reason":[[:space:]]*"dispersion: the phases curve'
+expect_ok "dispersive stack tmm" stack "$ex/quartz_multi_order_halfwave.json" --method tmm --lambda-nm 450
+bad "material with eta_o" '{"layers": [{"material": "quartz", "eta_o": 1.5, "axis": [0,0,1], "thickness_um": 1}]}'
+bad "unknown material" '{"layers": [{"material": "unobtainium", "axis": [0,0,1], "thickness_um": 1}]}'
+bad "material not a string" '{"layers": [{"material": 3, "axis": [0,0,1], "thickness_um": 1}]}'
+bad "material without axis" '{"layers": [{"material": "quartz", "thickness_um": 1}]}'
+bad "isotropic material with axis" '{"layers": [{"material": "pmma", "axis": [0,0,1], "thickness_um": 1}]}'
+expect_error "material unphysical at lambda" stack "$tmpdir/quartz.json" --lambda-nm 100.2
+
 expect_error "stack with slab options" spectrum --stack "$ex/cellophane3.json" --eta-o 1.5
 expect_error "stack with eta-i" spectrum --stack "$ex/cellophane3.json" --eta-i 1.3
 expect_error "stack with analytic" spectrum --stack "$ex/cellophane3.json" --method analytic

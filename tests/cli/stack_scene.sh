@@ -47,6 +47,39 @@ for scene in fig9c fig9c_analyzer45; do
     "$tmpdir/${scene}_stack_expansion.png" 0.01 1.5
 done
 
+# A stack layer of a dispersive material: the quartz plate of examples/materials written as a
+# one-layer stack renders as the plain material slab with the numeric method (n(λ) per sample in
+# both), and as two halves; a material layer outside its band is refused with its path.
+python3 - "$tmpdir" <<'PY'
+import json, sys
+sc = json.load(open("examples/materials/quartz_plate.json"))
+sc["camera"]["width"], sc["camera"]["height"] = 48, 27
+json.dump(sc, open(sys.argv[1] + "/quartz_plain.json", "w"))
+sl = sc["slabs"][0]
+layer = {k: sl.pop(k) for k in ("material", "axis", "thickness_um")}
+sl["layers"] = [layer]
+json.dump(sc, open(sys.argv[1] + "/quartz_stack.json", "w"))
+sl["layers"] = [dict(layer, thickness_um=layer["thickness_um"] / 2)] * 2
+json.dump(sc, open(sys.argv[1] + "/quartz_halves.json", "w"))
+PY
+for kind in plain stack halves; do
+  expect_ok "quartz $kind numeric" render "$tmpdir/quartz_$kind.json" -o "$tmpdir/quartz_$kind.png" --method numeric \
+    --antialias none --json
+  expect_grep "quartz $kind: no failed evaluation" '"fallback_evaluations":[[:space:]]*0,'
+done
+same "quartz one-layer stack = material slab, numeric" "$tmpdir/quartz_plain.png" "$tmpdir/quartz_stack.png" 0 0
+same "quartz halves = one layer, numeric" "$tmpdir/quartz_stack.png" "$tmpdir/quartz_halves.png" 0.001 0.01
+cp "$tmpdir/quartz_stack.json" "$tmpdir/quartz_bad.json"
+python3 - "$tmpdir/quartz_bad.json" <<'PY'
+import json, sys
+sc = json.load(open(sys.argv[1]))
+sc["slabs"][0]["layers"][0]["material"] = "unobtainium"
+json.dump(sc, open(sys.argv[1], "w"))
+PY
+expect_error "unknown layer material" render "$tmpdir/quartz_bad.json" -o "$tmpdir/bad.png"
+grep -q "slabs\[0\]\.layers\[0\]\.material: unknown material" "$tmpdir/err" ||
+  { echo "FAIL (unknown layer material: the message names its path)"; fails=$((fails + 1)); }
+
 # Layer order: [A, B] seen from the +normal side is [B, A] seen with the normal flipped (local z
 # flips with it: an axis (x, y, z) becomes (x, -y, -z)).
 python3 - "$tmpdir" <<'PY'

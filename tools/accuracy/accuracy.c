@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "cli_common.h"
+#include "cli_mpi.h"
 #include "cli_files.h"
 #include "outfile.h"
 #include "json_out.h"
@@ -35,7 +36,11 @@ int acc_options_finish(acc_options *o)
         return cli_error(ACC_CMD, "--cost-only: no accuracy sweep, so no --csv or --plot-dir"), -1;
     if ((o->cost_opts.fixed_iters > 0) && !o->cost)
         return cli_error(ACC_CMD, "--cost-iterations: needs --cost or --cost-only"), -1;
-    if (o->plot_dir) {
+    if ((o->cost || o->cost_only) && cli_mpi_active())
+        return cli_error(ACC_CMD, "--cost and --cost-only time one process: run them without mpirun -n N"), -1;
+    /* In an MPI job rank 0 alone writes, on its own file system. */
+    const int root = cli_mpi_rank() == 0;
+    if (o->plot_dir && root) {
         struct stat sb;
         if (stat(o->plot_dir, &sb) != 0 || !S_ISDIR(sb.st_mode))
             return cli_error(ACC_CMD, "--plot-dir: '%s' is not a directory", o->plot_dir), -1;
@@ -47,7 +52,7 @@ int acc_options_finish(acc_options *o)
     cli_files_write(&files, "--markdown", "md", o->md_path);
     if (o->plot_dir) cli_files_write_in_dir(&files, "--plot-dir", "png", o->plot_dir, "accuracy_vs_theta.png");
     if (o->plot_dir && o->cost) cli_files_write_in_dir(&files, "--plot-dir", "png", o->plot_dir, "accuracy_vs_cost.png");
-    const int rc = cli_files_check(ACC_CMD, &files);
+    const int rc = root ? cli_files_check(ACC_CMD, &files) : 0;
     cli_files_free(&files);
     if (rc) return -1;
     /* The check defaults to 4x the reference: a midpoint rule that has converged changes by far
@@ -234,12 +239,15 @@ int acc_study(const acc_options *o)
     if (rc != CLI_EXIT_OK) goto done;
     rc = CLI_EXIT_USAGE;
     /* Open the outputs first: a bad path should fail now, not after minutes of computation. */
-    if (o->csv_path && !(csv = open_out("--csv", o->csv_path))) goto done;
-    if (o->md_path && !(md = open_out("--markdown", o->md_path))) goto done;
+    const int root = cli_mpi_rank() == 0; /* alone, or rank 0 of an MPI job: the one that writes */
+    if (root && o->csv_path && !(csv = open_out("--csv", o->csv_path))) goto done;
+    if (root && o->md_path && !(md = open_out("--markdown", o->md_path))) goto done;
     rc = make_plans(&run, o, &sp, its, &pl);
     if (rc != CLI_EXIT_OK) goto done;
+    /* In an MPI job: every process is ready, or all stop with the first failure's line. */
+    if ((rc = cli_mpi_agree(CLI_EXIT_OK))) goto done;
     rc = CLI_EXIT_FAIL;
-    if (compute(&run, o, &pl) || write_outputs(&run, o, &csv, &md)) goto done;
+    if (compute(&run, o, &pl) || (root && write_outputs(&run, o, &csv, &md))) goto done;
     rc = CLI_EXIT_OK;
 
 done:

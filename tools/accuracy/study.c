@@ -25,6 +25,7 @@
 #include <string.h>
 
 #include "cli_common.h"
+#include "cli_mpi.h"
 #include "study.h"
 
 const char *const ACC_METHOD_KEY[NM] = {"analytic",     "expansion",    "numeric-3",         "numeric-8",
@@ -158,6 +159,106 @@ static int evaluate_point(const acc_plans *pl, const acc_material *m, double the
     return 0;
 }
 
+/* Job j of material m's sweep: the (θ, φ) grid first, then the near-axis sets. Its angles, whether
+ * it is checked against the denser integration, and whether it is a sample at all (a near-axis
+ * direction may lie beyond --theta-max-deg). */
+static int job_angles(const acc_run *run, const acc_material *m, int check_on, long j, double *theta, double *phi,
+                      int *check)
+{
+    const long ngrid = (long)run->ntheta * run->nphi, naxis = (long)AXIS_NPSI * run->nphi;
+    *theta = *phi = 0.0;
+    if (j < ngrid) {
+        const int it = (int)(j / run->nphi);
+        *theta = it * run->theta_step_deg * M_PI / 180.0;
+        *phi = 2.0 * M_PI * (double)(j % run->nphi) / run->nphi;
+        /* every kcheck-th angle, and the last one (the most grazing, where errors peak) */
+        *check = check_on && (it % run->kcheck == 0 || it == run->ntheta - 1);
+        return 1;
+    }
+    const long ja = (j - ngrid) % naxis;
+    *check = check_on && ja % AXIS_CHECK_STRIDE == 0;
+    return axis_sample(run, m, (int)((j - ngrid) / naxis), (int)ja, theta, phi);
+}
+
+/* A material's sweep: per job its ΔE00, reference chroma, angle and validity, and a job whose
+ * result came out non-finite (bad >= 0). */
+typedef struct {
+    const acc_run *run;
+    const acc_plans *pl;
+    const acc_material *m;
+    int check_on;
+    long njobs;
+    double (*de)[NM][2], (*chroma)[2], *theta_j;
+    char *valid;
+    long bad;
+    double bad_theta, bad_phi;
+    acc_progress *pg;
+} acc_sweep;
+
+/* Jobs j0 .. j1 - 1 into the arrays at offset 0 (de[j - j0] ...), in parallel. */
+static void sweep_jobs(acc_sweep *w, long j0, long j1, double (*de)[NM][2], double (*chroma)[2], double *theta_j,
+                       char *valid, int tick)
+{
+#pragma omp parallel for schedule(dynamic, 2)
+    for (long j = j0; j < j1; j++) {
+        double theta, phi;
+        int check;
+        const long k = j - j0;
+        valid[k] = (char)job_angles(w->run, w->m, w->check_on, j, &theta, &phi, &check);
+        theta_j[k] = valid[k] ? theta * 180.0 / M_PI : NAN;
+        if (valid[k] && evaluate_point(w->pl, w->m, theta, phi, check, de[k], chroma[k])) {
+#pragma omp critical(acc_bad)
+            {
+                w->bad = j;
+                w->bad_theta = theta;
+                w->bad_phi = phi;
+            }
+        }
+        if (tick) progress_tick(w->pg);
+    }
+}
+
+/* In an MPI job (cli_mpi.h), chunks of jobs are the processes' jobs; their results are exact
+ * copies of what one process computes, so the statistics are the same. */
+#define SWEEP_CHUNK 16
+typedef struct {
+    double de[SWEEP_CHUNK][NM][2], chroma[SWEEP_CHUNK][2], theta_j[SWEEP_CHUNK];
+    char valid[SWEEP_CHUNK];
+    long bad;
+    double bad_theta, bad_phi;
+} sweep_chunk;
+
+static int sweep_compute(void *user, long chunk, void *result)
+{
+    acc_sweep w = *(const acc_sweep *)user;
+    sweep_chunk *c = result;
+    const long j0 = chunk * SWEEP_CHUNK, j1 = j0 + SWEEP_CHUNK < w.njobs ? j0 + SWEEP_CHUNK : w.njobs;
+    w.bad = -1;
+    sweep_jobs(&w, j0, j1, c->de, c->chroma, c->theta_j, c->valid, 0);
+    c->bad = w.bad;
+    c->bad_theta = w.bad_theta;
+    c->bad_phi = w.bad_phi;
+    return 0;
+}
+
+static void sweep_store(void *user, long chunk, const void *result)
+{
+    acc_sweep *w = user;
+    const sweep_chunk *c = result;
+    const long j0 = chunk * SWEEP_CHUNK, n = j0 + SWEEP_CHUNK < w->njobs ? SWEEP_CHUNK : w->njobs - j0;
+    memcpy(w->de + j0, c->de, (size_t)n * sizeof c->de[0]);
+    memcpy(w->chroma + j0, c->chroma, (size_t)n * sizeof c->chroma[0]);
+    memcpy(w->theta_j + j0, c->theta_j, (size_t)n * sizeof c->theta_j[0]);
+    memcpy(w->valid + j0, c->valid, (size_t)n);
+    if (c->bad >= 0) {
+        w->bad = c->bad;
+        w->bad_theta = c->bad_theta;
+        w->bad_phi = c->bad_phi;
+    }
+    w->pg->done += n;
+    biref_progress_bar_update(w->pg->bar, (int)(1000000.0 * (double)w->pg->done / (double)w->pg->total), 1000000);
+}
+
 int acc_run_material(acc_run *run, const acc_plans *pl, int mi, acc_progress *pg)
 {
     const acc_material *m = &run->mat[mi];
@@ -179,46 +280,29 @@ int acc_run_material(acc_run *run, const acc_plans *pl, int mi, acc_progress *pg
         return cli_error(ACC_CMD, "out of memory"), -1;
     }
     /* The check integration: base materials only, on a subset (see AXIS_CHECK_STRIDE). */
-    const int check_on = run->samples_check > 0 && m->base < 0;
+    acc_sweep sw = {run, pl, m, run->samples_check > 0 && m->base < 0, njobs, de, chroma, theta_j, valid, -1, 0, 0, pg};
     const double t0 = omp_get_wtime();
-    long bad = -1;
-    double bad_theta = 0, bad_phi = 0;
-#pragma omp parallel for schedule(dynamic, 2)
-    for (long j = 0; j < njobs; j++) {
-        double theta = 0.0, phi = 0.0;
-        int check;
-        if (j < ngrid) {
-            const int it = (int)(j / run->nphi);
-            theta = it * run->theta_step_deg * M_PI / 180.0;
-            phi = 2.0 * M_PI * (double)(j % run->nphi) / run->nphi;
-            /* every kcheck-th angle, and the last one (the most grazing, where errors peak) */
-            check = check_on && (it % run->kcheck == 0 || it == run->ntheta - 1);
-            valid[j] = 1;
-        } else {
-            const long ja = (j - ngrid) % naxis;
-            valid[j] = (char)axis_sample(run, m, (int)((j - ngrid) / naxis), (int)ja, &theta, &phi);
-            check = check_on && ja % AXIS_CHECK_STRIDE == 0;
+    if (cli_mpi_active()) {
+        cli_mpi_jobs((njobs + SWEEP_CHUNK - 1) / SWEEP_CHUNK, sizeof(sweep_chunk), sweep_compute, sweep_store, &sw, NULL,
+                     NULL);
+        if (cli_mpi_rank() > 0) { /* rank 0 alone keeps the results */
+            free(de), free(chroma), free(theta_j), free(valid);
+            return 0;
         }
-        theta_j[j] = valid[j] ? theta * 180.0 / M_PI : NAN;
-        if (valid[j] && evaluate_point(pl, m, theta, phi, check, de[j], chroma[j])) {
-#pragma omp critical(acc_bad)
-            {
-                bad = j;
-                bad_theta = theta;
-                bad_phi = phi;
-            }
-        }
-        progress_tick(pg);
+    } else {
+        sweep_jobs(&sw, 0, njobs, de, chroma, theta_j, valid, 1);
     }
+    const long bad = sw.bad;
+    const double bad_theta = sw.bad_theta, bad_phi = sw.bad_phi;
     r->elapsed_s = omp_get_wtime() - t0;
     if (bad >= 0) {
         free(de);
         free(chroma);
         free(theta_j);
         free(valid);
-        return cli_error(ACC_CMD, "material %s: non-finite result at theta %g deg, axis azimuth %g deg", m->name,
-                         bad_theta * 180.0 / M_PI, bad_phi * 180.0 / M_PI),
-               -1;
+        cli_error(ACC_CMD, "material %s: non-finite result at theta %g deg, axis azimuth %g deg", m->name,
+                  bad_theta * 180.0 / M_PI, bad_phi * 180.0 / M_PI);
+        return cli_mpi_abort(-1); /* the other processes of an MPI job wait for the next material */
     }
     /* Serial aggregation keeps the sums independent of the thread count. NaN = not computed. */
     for (int it = 0; it < run->ntheta; it++) {

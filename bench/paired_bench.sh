@@ -9,8 +9,8 @@
 # each side (prefilter/plain, analyzer/s-p, ...). A row whose feature a side lacks (an option,
 # a method, a scene its parser refuses, MPI) is "n/a" for that side instead of failing.
 #
-#   bench/paired_bench.sh                        # every row, main vs the working tree (~10 min)
-#   bench/paired_bench.sh --quick                # every row, smaller frames, 2 rounds (~4 min)
+#   bench/paired_bench.sh                        # every row, main vs the working tree (~15 min)
+#   bench/paired_bench.sh --quick                # every row, smaller frames, 2 rounds (~5 min)
 #   bench/paired_bench.sh --rows analytic,startup --base COMMIT --rounds 7
 #   bench/paired_bench.sh --base 13ce0eb --rows analytic   # the original single measurement
 #   bench/paired_bench.sh --dry-run              # the rows and their commands; builds nothing
@@ -415,7 +415,7 @@ for e in result_rows:
 for n in notes:
     print("  " + n)
 if within:
-    print("within each side (wall):")
+    print("within each side (wall; first / second, > 1: the first costs more):")
     for w in within:
         print("  %-40s base %8s   current %8s" % (w["ratio"], ratio(w["base"]), ratio(w["current"])))
 print("load average before %s, after %s" % (out["load_before"], out["load_after"]))

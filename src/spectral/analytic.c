@@ -67,23 +67,67 @@ void biref_reflection_phases(const biref_spectral *sp, const biref_slab_state *s
         }
 }
 
+/* E of transmission (eqs. 20-21): W[i][x], the energy of all paths arriving at the bottom in mode
+ * x (eq. 21's left part), and the incoherent energy E[i][o] leaving through it. */
+static void transmission_energy(const biref_spectral *sp, const biref_slab_state *st, double W[2][2][3],
+                                double E[2][2][3])
+{
+    const double complex(*t01)[2] = st->top.t_down, (*r10)[2] = st->top.r_up;
+    const double complex(*r12)[2] = st->bottom.r_down, (*t12)[2] = st->bottom.t_down;
+    const double complex *od = st->opl_down, *ou = st->opl_up;
+    double ed[2][3], eu[2][3], w0[2][2][3];
+    for (int m = 0; m < 2; m++) biref_leg_energy(sp, od[m], ed[m]), biref_leg_energy(sp, ou[m], eu[m]);
+    for (int i = 0; i < 2; i++)
+        for (int x = 0; x < 2; x++)
+            for (int j = 0; j < 3; j++) w0[i][x][j] = biref_abs2(t01[i][x]) * ed[x][j];
+    biref_path_energies((const double(*)[2][3])w0, 2, r12, eu, r10, ed, W);
+    for (int o = 0; o < 2; o++)
+        for (int i = 0; i < 2; i++)
+            for (int j = 0; j < 3; j++) E[i][o][j] = W[i][0][j] * biref_abs2(t12[0][o]) + W[i][1][j] * biref_abs2(t12[1][o]);
+}
+
+/* E of reflection: U[i][y], the energy of all paths arriving at the top (inside) in up mode y,
+ * and the incoherent energy E[i][o] of the direct reflection and all paths leaving there. */
+static void reflection_energy(const biref_spectral *sp, const biref_slab_state *st, double U[2][2][3],
+                              double E[2][2][3])
+{
+    const double complex(*r01)[2] = st->top.r_down, (*t01)[2] = st->top.t_down;
+    const double complex(*r10)[2] = st->top.r_up, (*t10)[2] = st->top.t_up;
+    const double complex(*r12)[2] = st->bottom.r_down;
+    const double complex *od = st->opl_down, *ou = st->opl_up;
+    double ed[2][3], eu[2][3], u0[2][2][3];
+    for (int m = 0; m < 2; m++) biref_leg_energy(sp, od[m], ed[m]), biref_leg_energy(sp, ou[m], eu[m]);
+    for (int i = 0; i < 2; i++)
+        for (int y = 0; y < 2; y++)
+            for (int j = 0; j < 3; j++)
+                u0[i][y][j] = (biref_abs2(t01[i][0]) * ed[0][j] * biref_abs2(r12[0][y]) + biref_abs2(t01[i][1]) * ed[1][j] * biref_abs2(r12[1][y])) *
+                              eu[y][j];
+    biref_path_energies((const double(*)[2][3])u0, 2, r10, ed, r12, eu, U);
+    for (int o = 0; o < 2; o++)
+        for (int i = 0; i < 2; i++)
+            for (int j = 0; j < 3; j++)
+                E[i][o][j] = biref_abs2(r01[i][o]) + U[i][0][j] * biref_abs2(t10[0][o]) + U[i][1][j] * biref_abs2(t10[1][o]);
+}
+
+void biref_analytic_paper_energy(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3])
+{
+    double V[2][2][3];
+    if (which == BIREF_REFLECTION)
+        reflection_energy(sp, st, V, E);
+    else
+        transmission_energy(sp, st, V, E);
+}
+
 static void transmission(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
                          double E[2][2][3], double H[2][2][3])
 {
     const double complex(*t01)[2] = st->top.t_down, (*r10)[2] = st->top.r_up;
     const double complex(*r12)[2] = st->bottom.r_down, (*t12)[2] = st->bottom.t_down;
-    const double complex *od = st->opl_down, *ou = st->opl_up;
 
     biref_phase_int h0, trip[2][2];
     biref_transmission_phases(sp, st, fp, &h0, trip);
-
-    double ed[2][3], eu[2][3], w0[2][2][3], W[2][2][3];
-    for (int m = 0; m < 2; m++) biref_leg_energy(sp, od[m], ed[m]), biref_leg_energy(sp, ou[m], eu[m]);
-    for (int i = 0; i < 2; i++)
-        for (int x = 0; x < 2; x++)
-            for (int j = 0; j < 3; j++) w0[i][x][j] = biref_abs2(t01[i][x]) * ed[x][j];
-    /* W[i][x]: energy of all paths arriving at the bottom in mode x (eq. 21's left part). */
-    biref_path_energies((const double(*)[2][3])w0, 2, r12, eu, r10, ed, W);
+    double W[2][2][3];
+    transmission_energy(sp, st, W, E);
 
     for (int o = 0; o < 2; o++) {
         /* Descendant coefficients (eq. 23, m = 1) do not depend on the input. */
@@ -94,7 +138,6 @@ static void transmission(const biref_spectral *sp, const biref_slab_state *st, c
         for (int i = 0; i < 2; i++) {
             double *h = H[i][o];
             h[0] = h[1] = h[2] = 0.0;
-            for (int j = 0; j < 3; j++) E[i][o][j] = W[i][0][j] * biref_abs2(t12[0][o]) + W[i][1][j] * biref_abs2(t12[1][o]);
             /* H0 (eq. 24): the ordinary and the extraordinary order-0 path. */
             biref_add_re_integral(h, ONE, conj(t01[i][0] * t12[0][o]) * t01[i][1] * t12[1][o], &h0);
             for (int x = 0; x < 2; x++)
@@ -110,20 +153,11 @@ static void reflection(const biref_spectral *sp, const biref_slab_state *st, con
     const double complex(*r01)[2] = st->top.r_down, (*t01)[2] = st->top.t_down;
     const double complex(*r10)[2] = st->top.r_up, (*t10)[2] = st->top.t_up;
     const double complex(*r12)[2] = st->bottom.r_down;
-    const double complex *od = st->opl_down, *ou = st->opl_up;
 
     biref_phase_int p1[4], pair[4][4];
     biref_reflection_phases(sp, st, fp, p1, pair);
-
-    double ed[2][3], eu[2][3], u0[2][2][3], U[2][2][3];
-    for (int m = 0; m < 2; m++) biref_leg_energy(sp, od[m], ed[m]), biref_leg_energy(sp, ou[m], eu[m]);
-    for (int i = 0; i < 2; i++)
-        for (int y = 0; y < 2; y++)
-            for (int j = 0; j < 3; j++)
-                u0[i][y][j] = (biref_abs2(t01[i][0]) * ed[0][j] * biref_abs2(r12[0][y]) + biref_abs2(t01[i][1]) * ed[1][j] * biref_abs2(r12[1][y])) *
-                              eu[y][j];
-    /* U[i][y]: energy of all paths arriving at the top (inside) in up mode y. */
-    biref_path_energies((const double(*)[2][3])u0, 2, r10, ed, r12, eu, U);
+    double U[2][2][3];
+    reflection_energy(sp, st, U, E);
 
     for (int o = 0; o < 2; o++) {
         double complex desc[2][4];
@@ -132,8 +166,6 @@ static void reflection(const biref_spectral *sp, const biref_slab_state *st, con
         for (int i = 0; i < 2; i++) {
             double *h = H[i][o];
             h[0] = h[1] = h[2] = 0.0;
-            for (int j = 0; j < 3; j++)
-                E[i][o][j] = biref_abs2(r01[i][o]) + U[i][0][j] * biref_abs2(t10[0][o]) + U[i][1][j] * biref_abs2(t10[1][o]);
             double complex a1[4]; /* order-1 amplitudes without their phase */
             for (int a = 0; a < 4; a++) a1[a] = t01[i][a >> 1] * r12[a >> 1][a & 1] * t10[a & 1][o];
             for (int a = 0; a < 4; a++) {

@@ -93,8 +93,9 @@ biref_status biref_expansion_series_polarized(const biref_spectral *sp, const bi
     return series_polarized(sp, st, NULL, which, C, P, opts, xyz, order_used);
 }
 
+/* order_used (NULL: not wanted): the pair order of each direction. */
 static biref_status series(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
-                           const biref_expansion_opts *opts, biref_spectrum *out)
+                           const biref_expansion_opts *opts, biref_spectrum *out, int order_used[2])
 {
     if (!sp || !st || !out) return BIREF_ERR_INVALID;
     biref_expansion_opts def;
@@ -118,6 +119,7 @@ static biref_status series(const biref_spectral *sp, const biref_slab_state *st,
     for (int which = 0; which < 2; which++) {
         biref_xp_tail_setup(sp, st, which, f, 4, &tm[which]);
         ord[which] = biref_xp_choose_orders(&pc, st, &tm[which], 4, opts);
+        if (order_used) order_used[which] = ord[which].pairs;
     }
     path_group gT[EXP_MAX_GROUPS], gR[EXP_MAX_GROUPS];
     int G[2];
@@ -135,11 +137,11 @@ static biref_status series(const biref_spectral *sp, const biref_slab_state *st,
 biref_status biref_expansion_series(const biref_spectral *sp, const biref_slab_state *st,
                                     const biref_expansion_opts *opts, biref_spectrum *out)
 {
-    return series(sp, st, NULL, opts, out);
+    return series(sp, st, NULL, opts, out, NULL);
 }
 
 static biref_status expansion_pairs(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
-                                    const biref_expansion_opts *opts, biref_spectrum *out);
+                                    const biref_expansion_opts *opts, biref_spectrum *out, int order_used[2]);
 
 static int is_diagonal(const double complex M[2][2]) { return M[0][1] == 0.0 && M[1][0] == 0.0; }
 
@@ -165,11 +167,12 @@ static biref_status expansion_polarized(const biref_spectral *sp, const biref_sl
         return BIREF_OK;
     }
     if (is_diagonal(C) && (!P || is_diagonal(P))) {
+        /* The order reported is the one the result comes from: that of the four s/p pairs. */
         biref_spectrum x;
-        biref_status s = expansion_pairs(sp, st, fp, opts, &x);
+        int ord[2];
+        biref_status s = expansion_pairs(sp, st, fp, opts, &x, ord);
         if (s != BIREF_OK) return s;
-        if (order_used) s = series_polarized(sp, st, fp, which, C, P, opts, xyz, order_used);
-        if (s != BIREF_OK) return s;
+        if (order_used) *order_used = ord[which];
         const double(*X)[2][3] = which == BIREF_REFLECTION ? x.R : x.T;
         for (int j = 0; j < 3; j++) {
             xyz[j] = 0.0;
@@ -207,17 +210,17 @@ static biref_status expansion_polarized(const biref_spectral *sp, const biref_sl
 }
 
 static biref_status expansion_pairs(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
-                                    const biref_expansion_opts *opts, biref_spectrum *out)
+                                    const biref_expansion_opts *opts, biref_spectrum *out, int order_used[2])
 {
     if (!sp || !st || !out) return BIREF_ERR_INVALID;
     const biref_numeric_plan *coherent = biref_coherent_plan(sp, st);
     if (!coherent) {
-        biref_status s = series(sp, st, fp, opts, out);
+        biref_status s = series(sp, st, fp, opts, out, order_used);
         if (s != BIREF_OK) return s;
         /* The truncated series and its incoherent tail can leave [0, 1] by up to ~1e-2 where
          * internal reflections are strong (grazing incidence, high indices). */
-        double E[2][2][2][3], H[2][2][3], X[2][2][2][3];
-        for (int which = 0; which < 2; which++) biref_analytic_paper_terms(sp, st, which, E[which], H);
+        double E[2][2][2][3], X[2][2][2][3];
+        for (int which = 0; which < 2; which++) biref_analytic_paper_energy(sp, st, which, E[which]);
         memcpy(X[0], out->T, sizeof out->T);
         memcpy(X[1], out->R, sizeof out->R);
         biref_physical_limit((const double(*)[2][2][3])E, X);
@@ -227,6 +230,7 @@ static biref_status expansion_pairs(const biref_spectral *sp, const biref_slab_s
     }
     if (opts && !(opts->tolerance > 0.0) && opts->order < 0) return BIREF_ERR_INVALID;
     biref_spectrum_numeric(coherent, st, out);
+    if (order_used) order_used[0] = order_used[1] = 0;
     return BIREF_OK;
 }
 
@@ -252,7 +256,7 @@ biref_status biref_expansion_polarized_footprint(const biref_spectral *sp, const
 biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab_state *st,
                                       const biref_expansion_opts *opts, biref_spectrum *out)
 {
-    biref_status s = expansion_pairs(sp, st, NULL, opts, out);
+    biref_status s = expansion_pairs(sp, st, NULL, opts, out, NULL);
     if (s != BIREF_OK) return s;
     for (int i = 0; i < 2; i++)
         for (int o = 0; o < 2; o++)

@@ -9,6 +9,7 @@
 #include "error.h"
 #include "optics/slab_internal.h"
 #include "spectral/analytic_terms.h"
+#include "spectral/expansion_packet.h"
 #include "spectral/integrator_internal.h"
 #include "spectral/numeric_lanes.h"
 #include "spectral/phase_prefilter.h"
@@ -40,6 +41,7 @@ struct biref_integrator {
     side_worker side;
     biref_simd_isa isa;          /* analytic: the packet kernel's instruction set, picked at creation */
     biref_packet_hits_kernel hits; /* NULL: no packets */
+    biref_expansion_hits_kernel xhits; /* the expansion's packets (NULL: none) */
     stack_worker stack;
 };
 
@@ -167,6 +169,8 @@ biref_status biref_integrator_create(const biref_spectral *sp, const biref_integ
         break;
     case BIREF_METHOD_EXPANSION:
         it->side = side_expansion;
+        it->isa = isa;
+        it->xhits = biref_simd_expansion_kernel(isa);
         it->stack = stack_closed_form;
         break;
     default:
@@ -306,7 +310,11 @@ void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_
     }
     if (it->hits && light->sp_model && (!fp || one_prefilter(fp, n)))
         it->hits(it->sp, light->w_in, light->mask, hits, n, T, R, scalar, fp, NULL);
-    else
+    else if (it->xhits && light->sp_model && (!fp || one_prefilter(fp, n))) {
+        /* The scalar expansion detects through P = diag(mask) as a Jones matrix: weights mask^2. */
+        const double m2[2] = {light->mask[0] * light->mask[0], light->mask[1] * light->mask[1]};
+        it->xhits(it->sp, &it->xopts, light->w_in, m2, hits, n, T, R, scalar, fp);
+    } else
         memset(scalar, 1, n);
 }
 

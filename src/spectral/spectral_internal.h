@@ -130,6 +130,10 @@ void biref_analytic_mixed(const biref_spectral *sp, const biref_slab_state *st, 
  * outputs and directions exactly 1 per input and band (energy balance of a lossless slab). */
 void biref_physical_limit(const double E[2][2][2][3], double X[2][2][2][3]);
 
+/* E of biref_analytic_paper_terms alone: the incoherent energy of every path (eqs. 20-21), the
+ * energy balance's reference (biref_physical_limit), without the look-ups of H. */
+void biref_analytic_paper_energy(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3]);
+
 /* The paper's terms as printed (eqs. 20-26, m = 1), in every regime (tests of the formulas). */
 void biref_analytic_paper_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
                                 double H[2][2][3]);

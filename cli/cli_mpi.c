@@ -195,9 +195,14 @@ static int jobs_master(job_run *j)
         int progressed = 0, flag = 0;
         MPI_Message m;
         MPI_Status st;
-        while (MPI_Improbe(MPI_ANY_SOURCE, TAG_RESULT, MPI_COMM_WORLD, &flag, &m, &st), flag) {
+        for (;;) {
+            /* A free buffer first: a result stays in the network until one is (a rank's results
+             * can outrun the tests of their transfers). */
             int b = 0;
-            while (busy[b]) b++; /* free: at most DEPTH results per rank are on their way */
+            while (b < nbuf - 1 && busy[b]) b++;
+            if (b == nbuf - 1) break;
+            MPI_Improbe(MPI_ANY_SOURCE, TAG_RESULT, MPI_COMM_WORLD, &flag, &m, &st);
+            if (!flag) break;
             busy[b] = 1;
             MPI_Imrecv(buf + (size_t)b * j->msg_size, (int)j->msg_size, MPI_BYTE, &m, &req[b]);
             const int w = st.MPI_SOURCE;

@@ -45,6 +45,8 @@ static cJSON *material_json(const pe_args *a, const biref_pe_material *m, double
     }
     cJSON_AddNumberToObject(o, "n0", m->n0);
     cJSON_AddNumberToObject(o, "C_brewster", m->C_per_Pa / BIREF_BREWSTER);
+    cJSON_AddNumberToObject(o, "C_lambda_nm", m->lambda_ref_nm > 0 ? m->lambda_ref_nm : BIREF_PE_LAMBDA_REF_NM);
+    cJSON_AddNumberToObject(o, "dispersion_alpha", m->dispersion_alpha);
     cJSON_AddNumberToObject(o, "fringe_constant_N_per_m", biref_pe_fringe_constant(m, lambda_for_f));
     cJSON_AddNumberToObject(o, "fringe_constant_lambda_nm", lambda_for_f);
     cJSON_AddStringToObject(o, "source", m->source);
@@ -73,8 +75,12 @@ static int make_material(const pe_args *a, biref_pe_material *m)
         if (!isnan(a->n0)) m->n0 = a->n0;
         if (!isnan(a->c_brew)) m->C_per_Pa = a->c_brew * BIREF_BREWSTER;
         /* f = lambda / C (N/m per fringe); F N/mm = 1e3 F N/m. */
-        if (!isnan(a->fringe_value)) m->C_per_Pa = a->fringe_value_nm * 1e-9 / (a->fringe_value * 1e3);
+        if (!isnan(a->fringe_value)) {
+            m->C_per_Pa = a->fringe_value_nm * 1e-9 / (a->fringe_value * 1e3);
+            m->lambda_ref_nm = a->fringe_value_nm; /* C holds there: dispersion scales from it */
+        }
     }
+    if (!isnan(a->dispersion_alpha)) m->dispersion_alpha = a->dispersion_alpha;
     char msg[256];
     if (biref_pe_material_check(m, msg, sizeof msg) != BIREF_OK) return cli_error(CMD, "material: %s", msg), CLI_EXIT_USAGE;
     return CLI_EXIT_OK;
@@ -348,7 +354,7 @@ static void print_profile(const pe_args *a, const pe_run *run)
             }
             for (int j = 0; j < 3; j++) col[j] *= a->exposure;
             ret = tilt > 0.0 ? biref_pe_retardation_oblique_nm(&run->setup, &p, tilt)
-                             : biref_pe_retardation_nm(&run->setup, &p);
+                             : biref_pe_retardation_at_nm(&run->setup, &p, lambda_N);
         }
         /* Mono: the grey level, shown through the tint; white: the luminance Y. */
         double intensity = col[1];

@@ -47,7 +47,7 @@ static void key_colour(const pe_ext_ctx *c, double N, unsigned char rgb[3])
     const biref_pe_setup *s = c->setup;
     /* Uniaxial stress at 45 degrees to the polarizer, the brightest direction of a plane
      * polariscope (a circular one ignores it): sigma R R^T with R = (cos a, sin a). */
-    const double sig = N * c->lambda_N * 1e-9 / (s->material.C_per_Pa * s->thickness);
+    const double sig = N * c->lambda_N * 1e-9 / (biref_pe_C_at(&s->material, c->lambda_N) * s->thickness);
     const double a = c->polarizer + 0.25 * M_PI;
     biref_pe_stress r = {sig * cos(a) * cos(a), sig * sin(a) * sin(a), sig * sin(a) * cos(a)};
     biref_pe_principal p;

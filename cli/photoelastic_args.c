@@ -233,6 +233,10 @@ static const cli_opt OPTS[] = {
     CLI_CUSTOM("fringe-value", "F@L", OPT_FRINGE_VALUE,
                "the material fringe value instead: F N/mm per fringe, as quoted at\n"
                "L nm (e.g. 7.0@546.1); C = L / F"),
+    CLI_DOUBLE("dispersion-alpha", "A", F(dispersion_alpha), -1, 3,
+               "dispersion of birefringence: C(lambda) = C (Lref / lambda)^A, Lref the\n"
+               "wavelength of C (546.1 nm, or L of --fringe-value); 0 = none (the\n"
+               "presets' default; docs/PHOTOELASTICITY.md)"),
     CLI_DOUBLE("eta-i", "N", F(eta_i), 1, 5, "index around the plate (default 1; n0 = index-matched immersion)"),
     CLI_TEXT("\nPolariscope and light:\n"),
     CLI_CUSTOM("polariscope", "P", OPT_POLARISCOPE, "plane or circular (default circular)"),
@@ -328,6 +332,7 @@ static void defaults(pe_args *a)
     a->kind = -1;
     a->material_name = "polycarbonate";
     a->thickness_mm = a->n0 = a->c_brew = a->fringe_value = a->fringe_value_nm = a->margin_pct = NAN;
+    a->dispersion_alpha = NAN;
     a->eta_i = 1.0;
     a->lambda = 589.0;
     a->exposure = 1.0;

@@ -17,6 +17,7 @@ typedef struct {
     int json, tint, have_profile, have_view, have_lambda, material_given;
     int prefilter; /* 1: fringes averaged over each sample's footprint (--antialias prefilter) */
     double thickness_mm, n0, c_brew; /* NAN: not given */
+    double dispersion_alpha; /* --dispersion-alpha; NAN: not given (the material's, 0 for every preset) */
     double fringe_value, fringe_value_nm; /* --fringe-value F@L (N/mm per fringe at L nm); NAN: not given */
     double margin_pct; /* --margin-pct; NAN: not given (5 % for finite-element sources, else the part's frame) */
     double eta_i, polarizer_deg, lambda, exposure, tilt_deg;

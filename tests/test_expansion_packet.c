@@ -3,7 +3,7 @@
  * of a hit's state for the transmission, of its flip for the reflection) on random seeded hits,
  * with point and prefiltered look-ups, adaptive and fixed orders; and small renders of the
  * examples against the scalar path (mean dE00 <= 0.02, max <= 0.5), the same for 1 and 2
- * threads, world-fixed polarizers included (they stay on the scalar path). */
+ * threads, world-fixed polarizers included (a real light per hit and side). */
 #include <complex.h>
 #include <math.h>
 #include <stdio.h>
@@ -18,6 +18,7 @@
 #include "spectral/phase_prefilter.h"
 #include "spectral/spectral_internal.h"
 #include "test_cases.h"
+#include "test_packet_lights.h"
 #include "test_render_util.h"
 
 static int quick;
@@ -101,7 +102,7 @@ static void kernels_vs_scalar(const biref_expansion_opts *xo, int prefilter, uns
         /* The kernel's weights are the detected fractions: the scalar expansion's analyzer
          * P = diag(mask) passes mask^2 of each output's intensity. */
         const double m2[2] = {mask[0] * mask[0], mask[1] * mask[1]};
-        biref_simd_expansion_kernel((biref_simd_isa)isa)(sp, xo, w_in, m2, hits, n, T, R, scalar, pf ? fps : NULL);
+        biref_simd_expansion_kernel((biref_simd_isa)isa)(sp, xo, w_in, m2, hits, n, T, R, scalar, pf ? fps : NULL, NULL);
         double worst = 0.0;
         int taken = 0, n_thick = 0, thick_taken = 0;
         for (size_t k = 0; k < n; k++) {
@@ -144,6 +145,102 @@ static void prefiltered_hit_kernels_vs_scalar(void)
     biref_expansion_opts xo;
     biref_expansion_opts_default(&xo);
     kernels_vs_scalar(&xo, 1, 0xe9a4u);
+}
+
+/* The kernels under a real light per hit and side (world-fixed polarizers' form) against the
+ * scalar expansion under the same matrices (biref_light_coherency + biref_light_set_analyzer:
+ * series_polarized, one direction, a negative result moved towards the paths' energy), point and
+ * prefiltered; and through the integrator's door (biref_integrate_packet_hits_lit). */
+static void light_per_hit_kernels_vs_scalar(void)
+{
+    const biref_spectral *sp = test_sp();
+    biref_phase_prefilter *pf = NULL;
+    CHECK(biref_phase_prefilter_create(sp, &pf) == BIREF_OK);
+    biref_integrator_options io;
+    biref_integrator_options_default(&io);
+    io.method = BIREF_METHOD_EXPANSION;
+    biref_integrator *it = NULL, *scalar_it = NULL;
+    CHECK(biref_integrator_create(sp, &io, &it, NULL, 0) == BIREF_OK);
+    setenv("BIREF_SIMD", "scalar", 1);
+    CHECK(biref_integrator_create(sp, &io, &scalar_it, NULL, 0) == BIREF_OK);
+    unsetenv("BIREF_SIMD");
+    enum { N = 301 };
+    const size_t want_n = quick ? 81 : N;
+    static biref_packet_hit hits[N];
+    static biref_packet_hit_light lights[N];
+    static biref_opl_footprint fps[N];
+    static double want[2][N][2][3], T[N][3], R[N][3];
+    static unsigned char scalar[N], thick[N];
+    test_rng rng = {0xe9a5u};
+    size_t n = 0;
+    while (n < want_n) {
+        biref_slab s;
+        double theta;
+        biref_slab_state st, fl;
+        random_slab(&rng, (int)n, &s, &theta);
+        if (biref_slab_prepare_trusted(&s, theta, &st) != BIREF_OK) continue;
+        hits[n] = (biref_packet_hit){s.eta_o, s.eta_e, {0, 0, 0}, s.thickness_nm, s.eta_i, s.eta_i * sin(theta)};
+        biref_axis_unit_unchecked(s.axis, hits[n].axis);
+        thick[n] = s.eta_i == 1.0 && s.thickness_nm > 4e5 && theta < 80 * M_PI / 180;
+        random_real_light(&rng, &lights[n].T);
+        random_real_light(&rng, &lights[n].R);
+        random_footprint(&rng, pf, &fps[n]);
+        biref_opl_footprint fpR;
+        biref_opl_footprint_flip(&fps[n], &fpR);
+        biref_slab_state_flip(&st, &fl);
+        int fine = 1;
+        for (int f = 0; f < 2; f++)
+            for (int side = 0; side < 2; side++) {
+                double complex C[2][2], P[2][2];
+                light_matrices(side ? &lights[n].R : &lights[n].T, C, P);
+                biref_light l;
+                biref_light_coherency((const double complex(*)[2])C, &l);
+                biref_light_set_analyzer(&l, (const double complex(*)[2])P);
+                biref_integration res;
+                fine &= biref_integrate_footprint(scalar_it, side ? &fl : &st, f ? (side ? &fpR : &fps[n]) : NULL,
+                                                  side ? BIREF_SIDE_REFLECTION : BIREF_SIDE_TRANSMISSION, &l,
+                                                  &res) == BIREF_OK;
+                memcpy(want[f][n][side], side ? res.R : res.T, sizeof res.T);
+            }
+        n += fine;
+    }
+    double moved = 0.0; /* the footprints matter */
+    for (size_t k = 0; k < n; k++)
+        for (int b = 0; b < 3; b++) moved = fmax(moved, fabs(want[1][k][0][b] - want[0][k][0][b]));
+    CHECK(moved > 0.01);
+    for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
+        if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
+        for (int f = 0; f < 2; f++) {
+            biref_simd_expansion_kernel((biref_simd_isa)isa)(sp, &io.expansion, NULL, NULL, hits, n, T, R, scalar,
+                                                             f ? fps : NULL, lights);
+            double worst = 0.0;
+            int n_thick = 0, thick_taken = 0;
+            for (size_t k = 0; k < n; k++) {
+                n_thick += thick[k];
+                if (scalar[k]) continue;
+                thick_taken += thick[k];
+                for (int b = 0; b < 3; b++)
+                    worst = fmax(worst, fmax(fabs(T[k][b] - want[f][k][0][b]), fabs(R[k][b] - want[f][k][1][b])));
+            }
+            printf("%s%s, light per hit: %d of %d thick hits in lanes, max |packet - scalar| = %.3g (point vs box "
+                   "up to %.2g)\n",
+                   biref_simd_isa_name((biref_simd_isa)isa), f ? " prefiltered" : "", thick_taken, n_thick, worst, moved);
+            CHECK(worst < (f ? 5e-12 : 1e-12));
+            CHECK(thick_taken * 10 >= n_thick * 7);
+        }
+    }
+    /* The integrator's door: the expansion takes them as well. */
+    biref_integrate_packet_hits_lit(it, hits, NULL, n, lights, T, R, scalar);
+    int taken = 0;
+    for (size_t k = 0; k < n; k++)
+        if (!scalar[k]) {
+            taken++;
+            for (int b = 0; b < 3; b++) CHECK_NEAR(R[k][b], want[0][k][1][b], 1e-12);
+        }
+    CHECK(taken > 0);
+    biref_integrator_destroy(it);
+    biref_integrator_destroy(scalar_it);
+    biref_phase_prefilter_destroy(pf);
 }
 
 static float *render_with(const char *path, const char *isa, biref_antialias aa, int threads, int w, int h)
@@ -220,6 +317,7 @@ int main(int argc, char **argv)
         {"hit_kernels_vs_scalar_adaptive_orders", hit_kernels_vs_scalar_adaptive_orders},
         {"hit_kernels_vs_scalar_fixed_order", hit_kernels_vs_scalar_fixed_order},
         {"prefiltered_hit_kernels_vs_scalar", prefiltered_hit_kernels_vs_scalar},
+        {"light_per_hit_kernels_vs_scalar", light_per_hit_kernels_vs_scalar},
         {"renders_vs_scalar", renders_vs_scalar},
     };
     return test_run_cases("test_expansion_packet", cases, TEST_COUNT(cases), argc, argv);

@@ -36,6 +36,12 @@ pe --preset beam --moment-Nmm 1500 --size 480 -o "$out/beam-circular-dark-white.
 pe --preset beam --moment-Nmm 1500 --size 480 --field light --light mono --lambda-nm 589 \
   -o "$out/beam-circular-light-589.png"
 
+# Dispersion of birefringence: the beam with its key, C constant (alpha 0, the presets' default)
+# and an illustrative alpha 0.5, C(lambda) = C (546.1 nm / lambda)^0.5 (section 17).
+pe --preset beam --moment-Nmm 1500 --size 480 --key -o "$out/beam-circular-dark-white-key.png"
+pe --preset beam --moment-Nmm 1500 --size 480 --key --dispersion-alpha 0.5 \
+  -o "$out/beam-circular-dark-white-key-alpha05.png"
+
 # Stress from a finite-element node export: the example disk (scattered nodes, circular boundary),
 # with the colour key and a scale bar; the preset disk in white light with its Michel-Levy key.
 pe --stress-nodes "$here/disk_nodes.csv" --columns sxx=S11,syy=S22,txy=S12 --boundary "$here/disk_boundary.csv" \

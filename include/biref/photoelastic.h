@@ -35,22 +35,34 @@ extern "C" {
 /* Material and stress-optic law                                             */
 /* ------------------------------------------------------------------------ */
 
-/* n1 - n2 = C (sigma1 - sigma2) (relative stress-optic law, plane stress). */
+/* n1 - n2 = C (sigma1 - sigma2) (relative stress-optic law, plane stress). Dispersion of
+ * birefringence (docs/PHOTOELASTICITY.md, "Dispersion of birefringence"): C(λ) = C_per_Pa
+ * (lambda_ref_nm / λ)^dispersion_alpha; alpha 0 (every preset's default) is no dispersion, C the
+ * same at every wavelength, and gives the pictures of a constant C exactly. */
 typedef struct {
-    const char *name;   /* preset name, or "custom" */
-    const char *source; /* where the numbers come from (preset), or "user" */
-    double n0;          /* index of the unstressed material */
-    double C_per_Pa;    /* relative stress-optic coefficient C in 1/Pa (> 0) */
+    const char *name;        /* preset name, or "custom" */
+    const char *source;      /* where the numbers come from (preset), or "user" */
+    double n0;               /* index of the unstressed material */
+    double C_per_Pa;         /* relative stress-optic coefficient C in 1/Pa (> 0), at lambda_ref_nm */
+    double lambda_ref_nm;    /* where C_per_Pa holds; 0 means BIREF_PE_LAMBDA_REF_NM */
+    double dispersion_alpha; /* exponent of C(λ); 0: none */
 } biref_pe_material;
+
+/* The wavelength of the presets' C (the mercury-green line of the fringe-value tables), nm. */
+#define BIREF_PE_LAMBDA_REF_NM 546.1
+
+/* C(λ) in 1/Pa: C_per_Pa (lambda_ref / λ)^alpha; exactly C_per_Pa when alpha is 0. */
+BIREF_API double biref_pe_C_at(const biref_pe_material *m, double lambda_nm);
 
 /* Presets: "polycarbonate", "epoxy", "pmma", "glass". BIREF_ERR_INVALID for other names. */
 BIREF_API biref_status biref_pe_material_preset(const char *name, biref_pe_material *out);
 /* The i-th preset (i < biref_pe_material_count()), for listings. */
 BIREF_API size_t biref_pe_material_count(void);
 BIREF_API const biref_pe_material *biref_pe_material_at(size_t i);
-/* Checks n0 and C (finite, n0 >= 1, C > 0); one-line reason into msg. */
+/* Checks n0 and C (finite, n0 >= 1, C > 0), lambda_ref_nm (0 or 200-2000 nm) and alpha (-1 to 3);
+ * one-line reason into msg. */
 BIREF_API biref_status biref_pe_material_check(const biref_pe_material *m, char *msg, size_t msg_len);
-/* Material fringe constant f_sigma = lambda / C in N/m: N = h (sigma1 - sigma2) / f_sigma. */
+/* Material fringe constant f_sigma = lambda / C(lambda) in N/m: N = h (sigma1 - sigma2) / f_sigma. */
 BIREF_API double biref_pe_fringe_constant(const biref_pe_material *m, double lambda_nm);
 
 /* In-plane stress tensor (plane stress, sigma_zz = tau_xz = tau_yz = 0), Pa. */
@@ -92,6 +104,13 @@ BIREF_API biref_slab biref_pe_slab_best(const biref_pe_material *m, double thick
  * retardations add (integrated photoelasticity); rotating directions change the picture. */
 BIREF_API biref_status biref_pe_stack(const biref_pe_material *m, double thickness_m, double eta_i, int n_layers,
                                       const biref_pe_stress *stress, biref_stack *out, char *msg, size_t msg_len);
+/* The same plate at one wavelength with C(lambda_nm) (dispersion of birefringence, docs/
+ * PHOTOELASTICITY.md §17): with alpha != 0 the layers' indices depend on the wavelength, so a
+ * white-light picture builds the stack at every sample wavelength. biref_pe_stack is this at the
+ * material's reference wavelength. */
+BIREF_API biref_status biref_pe_stack_at(const biref_pe_material *m, double thickness_m, double eta_i, int n_layers,
+                                         const biref_pe_stress *stress, double lambda_nm, biref_stack *out, char *msg,
+                                         size_t msg_len);
 
 /* ------------------------------------------------------------------------ */
 /* Stress fields (closed forms)                                              */
@@ -216,8 +235,10 @@ typedef struct {
     double lambda_nm;      /* monochromatic wavelength */
 } biref_pe_setup;
 
-/* Retardation (n1 - n2) h in nm and fringe order N = (n1 - n2) h / lambda = h C (s1 - s2) / lambda. */
+/* Retardation (n1 - n2) h in nm and fringe order N = (n1 - n2) h / lambda = h C (s1 - s2) / lambda,
+ * with C at the material's reference wavelength; _at: with C(lambda_nm) (the same without dispersion). */
 BIREF_API double biref_pe_retardation_nm(const biref_pe_setup *s, const biref_pe_principal *p);
+BIREF_API double biref_pe_retardation_at_nm(const biref_pe_setup *s, const biref_pe_principal *p, double lambda_nm);
 /* The model's retardation on the oblique path at theta (the plate turned about x, as in
  * biref_pe_shade_oblique): |Re(opl_e - opl_o)| of one crossing of biref_pe_slab_best; equals
  * biref_pe_retardation_nm at theta = 0. NAN if the slab cannot be prepared. */

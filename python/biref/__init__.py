@@ -933,7 +933,8 @@ def _pe_field(preset, stress_grid, mesh, thickness_mm, geometry, msg, mesh_args)
 
 def photoelastic(preset=None, stress_grid=None, thickness_mm=None, radius_mm=None, load_N=None, stress_MPa=None,
                  width_mm=None, height_mm=None, tension_deg=None, length_mm=None, depth_mm=None, moment_Nmm=None,
-                 material="polycarbonate", n0=None, C_brewster=None, eta_i=1.0, polariscope="circular",
+                 material="polycarbonate", n0=None, C_brewster=None, dispersion_alpha=None, eta_i=1.0,
+                 polariscope="circular",
                  field="dark", polarizer_deg=0.0, light="white", lambda_nm=None, size=512, supersample=2,
                  tilt_deg=0.0, exposure=1.0, threads=0, space="linear_srgb", antialias="prefilter", mesh=None,
                  stress=None, length_unit="mm", stress_unit="MPa"):
@@ -942,6 +943,8 @@ def photoelastic(preset=None, stress_grid=None, thickness_mm=None, radius_mm=Non
 
     antialias "prefilter" (default; a normal view averages each sample's fringes over its
     footprint) or "none" (the fringes at the sample points), as ``--antialias``.
+    dispersion_alpha: C(λ) = C (546.1 nm / λ)^alpha, as ``--dispersion-alpha`` (default: the
+    material's, 0 for every preset: no dispersion of birefringence).
 
     preset "disk" (the default; radius_mm 25, load_N 500), "hole" (radius_mm 5, width_mm 60,
     height_mm, stress_MPa 4, tension_deg 0) or "beam" (length_mm 100, depth_mm 20, moment_Nmm
@@ -972,6 +975,8 @@ def photoelastic(preset=None, stress_grid=None, thickness_mm=None, radius_mm=Non
             setup.material.n0 = float(n0)
         if C_brewster is not None:
             setup.material.C_per_Pa = float(C_brewster) * 1e-12
+    if dispersion_alpha is not None:
+        setup.material.dispersion_alpha = float(dispersion_alpha)
     msg = _ffi.new("char[]", _MSG)
     s = _lib.biref_pe_material_check(_ffi.addressof(setup, "material"), msg, _MSG)
     if s != _lib.BIREF_OK:

@@ -277,6 +277,15 @@ def test_photoelastic_matches_cli(tmp_path):
     assert img[h // 2, w // 2].max() > 0.05
 
 
+def test_photoelastic_dispersion_alpha():
+    base = biref.photoelastic(preset="beam", size=48)
+    np.testing.assert_array_equal(biref.photoelastic(preset="beam", size=48, dispersion_alpha=0.0), base)
+    moved = biref.photoelastic(preset="beam", size=48, dispersion_alpha=0.4)
+    assert np.abs(moved - base).max() > 0.05
+    with pytest.raises(ValueError, match="alpha"):
+        biref.photoelastic(preset="beam", size=48, dispersion_alpha=5)
+
+
 def test_photoelastic_mono_and_errors():
     img = biref.photoelastic(preset="hole", light="mono", lambda_nm=589, size=40, polariscope="plane", field="light")
     assert np.allclose(img[..., 0], img[..., 1], atol=1e-3)  # grey levels

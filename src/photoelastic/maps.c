@@ -33,7 +33,7 @@ biref_status biref_pe_map_from_name(const char *name, biref_pe_map_kind *out)
 double biref_pe_map_value(biref_pe_map_kind k, const biref_pe_setup *s, double lambda_nm, const biref_pe_principal *p)
 {
     switch (k) {
-    case BIREF_PE_MAP_FRINGE_ORDER: return biref_pe_retardation_nm(s, p) / lambda_nm;
+    case BIREF_PE_MAP_FRINGE_ORDER: return biref_pe_retardation_at_nm(s, p, lambda_nm) / lambda_nm;
     case BIREF_PE_MAP_ISOCLINIC: return p->phi * (180.0 / M_PI);
     case BIREF_PE_MAP_RETARDATION: return biref_pe_retardation_nm(s, p);
     case BIREF_PE_MAP_SIGMA1: return p->s1 * 1e-6;

@@ -11,13 +11,13 @@
 static const biref_pe_material PRESETS[] = {
     {"polycarbonate", "Dally & Riley, Experimental Stress Analysis (4th ed.), table of photoelastic "
                       "materials: f = 7.0 kN/m at 546.1 nm (PSM-1 type sheet)",
-     1.586, 78.0 * BIREF_BREWSTER},
+     1.586, 78.0 * BIREF_BREWSTER, BIREF_PE_LAMBDA_REF_NM, 0.0},
     {"epoxy", "Dally & Riley (4th ed.): epoxy (Araldite B type) f = 11.0 kN/m at 546.1 nm", 1.57,
-     50.0 * BIREF_BREWSTER},
+     50.0 * BIREF_BREWSTER, BIREF_PE_LAMBDA_REF_NM, 0.0},
     {"pmma", "Dally & Riley (4th ed.): polymethyl methacrylate f = 130 kN/m at 546.1 nm", 1.491,
-     4.2 * BIREF_BREWSTER},
+     4.2 * BIREF_BREWSTER, BIREF_PE_LAMBDA_REF_NM, 0.0},
     {"glass", "Aben & Guillemet, Photoelasticity of Glass (Springer 1993): soda-lime C = 2.7 Brewster", 1.52,
-     2.7 * BIREF_BREWSTER},
+     2.7 * BIREF_BREWSTER, BIREF_PE_LAMBDA_REF_NM, 0.0},
 };
 
 size_t biref_pe_material_count(void) { return sizeof PRESETS / sizeof PRESETS[0]; }
@@ -47,14 +47,25 @@ biref_status biref_pe_material_check(const biref_pe_material *m, char *msg, size
         why = "n0 must be between 1 and 5";
     else if (!isfinite(m->C_per_Pa) || m->C_per_Pa <= 0.0 || m->C_per_Pa > 1e-8)
         why = "C must be positive and at most 10000 Brewster";
+    else if (!(m->lambda_ref_nm == 0.0 || (m->lambda_ref_nm >= 200.0 && m->lambda_ref_nm <= 2000.0)))
+        why = "the reference wavelength of C must be 0 (546.1 nm) or 200 to 2000 nm";
+    else if (!isfinite(m->dispersion_alpha) || m->dispersion_alpha < -1.0 || m->dispersion_alpha > 3.0)
+        why = "the dispersion exponent alpha of C must be between -1 and 3";
     if (!why) return BIREF_OK;
     if (msg && msg_len) snprintf(msg, msg_len, "%s", why);
     return BIREF_ERR_INVALID;
 }
 
+double biref_pe_C_at(const biref_pe_material *m, double lambda_nm)
+{
+    if (m->dispersion_alpha == 0.0) return m->C_per_Pa;
+    const double ref = m->lambda_ref_nm > 0.0 ? m->lambda_ref_nm : BIREF_PE_LAMBDA_REF_NM;
+    return m->C_per_Pa * pow(ref / lambda_nm, m->dispersion_alpha);
+}
+
 double biref_pe_fringe_constant(const biref_pe_material *m, double lambda_nm)
 {
-    return lambda_nm * 1e-9 / m->C_per_Pa;
+    return lambda_nm * 1e-9 / biref_pe_C_at(m, lambda_nm);
 }
 
 void biref_pe_principal_of(const biref_pe_stress *s, biref_pe_principal *out)

@@ -11,9 +11,10 @@
 
 /* One sample of the tilted plate: the closest uniaxial slab (biref_pe_slab_best) on the general
  * path, white light through the integrator it. */
-static biref_status oblique_shade(const biref_pe_setup *s, const biref_integrator *it, const biref_pe_principal *p,
-                                  double theta, double c[3])
+static biref_status oblique_shade(const biref_pe_setup *setup, const biref_integrator *it,
+                                  const biref_pe_principal *p, double theta, double c[3])
 {
+    const biref_pe_setup at = biref_pe_setup_at_lambda(setup), *s = &at;
     const biref_slab slab = biref_pe_slab_best(&s->material, s->thickness, s->eta_i, p);
     biref_slab_state st;
     biref_status r = biref_slab_prepare(&slab, theta, &st);
@@ -42,6 +43,12 @@ static biref_status check_picture(const biref_pe_setup *s, const biref_spectral 
         return biref_fail(msg, msg_len, "supersampling %d: expected 1 to %d", opt->supersample,
                           BIREF_PE_MAX_SUPERSAMPLE);
     if (s->light == BIREF_PE_WHITE && !sp) return biref_fail(msg, msg_len, "white light needs a spectral context");
+    char why[128];
+    if (biref_pe_material_check(&s->material, why, sizeof why) != BIREF_OK) return biref_fail(msg, msg_len, "material: %s", why);
+    if (s->light == BIREF_PE_WHITE && opt->tilt > 0.0 && s->material.dispersion_alpha != 0.0)
+        return biref_fail(msg, msg_len, "dispersion of birefringence (alpha %g) is modelled at normal incidence only: a "
+                                        "tilted white-light view takes alpha 0",
+                          s->material.dispersion_alpha);
     if (!(f->frame[1] > f->frame[0] && f->frame[3] > f->frame[2]))
         return biref_fail(msg, msg_len, "the field's frame is empty");
     if (!(opt->tilt >= 0.0 && opt->tilt <= BIREF_PE_MAX_TILT_DEG * M_PI / 180.0))

@@ -7,6 +7,7 @@
 #include "biref/photoelastic.h"
 #include "photoelastic/pe_footprint.h"
 #include "photoelastic/shade_internal.h"
+#include "spectral/spectral_internal.h"
 
 biref_status biref_pe_polariscope_custom(const double stokes[4], const double complex P[2][2],
                                          biref_pe_polariscope *out)
@@ -67,6 +68,11 @@ double biref_pe_retardation_nm(const biref_pe_setup *s, const biref_pe_principal
     return s->material.C_per_Pa * (p->s1 - p->s2) * s->thickness * 1e9;
 }
 
+double biref_pe_retardation_at_nm(const biref_pe_setup *s, const biref_pe_principal *p, double lambda_nm)
+{
+    return biref_pe_C_at(&s->material, lambda_nm) * (p->s1 - p->s2) * s->thickness * 1e9;
+}
+
 double biref_pe_retardation_oblique_nm(const biref_pe_setup *s, const biref_pe_principal *p, double theta)
 {
     biref_slab slab = biref_pe_slab_best(&s->material, s->thickness, s->eta_i, p);
@@ -111,6 +117,51 @@ static double complex mono_cross_box(double tt, double q, double complex z, doub
     return sum;
 }
 
+/* Fewest samples of the dispersive white-light sum, and samples per cycle of the fastest phase
+ * k (2m + 1) delta(λ) across the band that it keeps (the m = 1 term, weight q ~ 3e-3 in air). */
+#define PE_DISPERSIVE_MIN_SAMPLES 192
+#define PE_DISPERSIVE_PER_CYCLE 8
+
+/* The plan of the context's midpoint plans (48 * 2^i samples) that resolves a retardation of
+ * delta_ref at the reference wavelength, C(λ) = C (ref / λ)^alpha: the phase k delta(λ) runs
+ * over delta_ref ref^alpha |λmin^-(1+alpha) - λmax^-(1+alpha)| cycles across the band; the largest
+ * plan where no plan does (such orders are the higher-order white of any sampling). */
+static const biref_numeric_plan *dispersive_plan(const biref_spectral *sp, const biref_pe_material *m, double delta_ref)
+{
+    const double ref = m->lambda_ref_nm > 0.0 ? m->lambda_ref_nm : BIREF_PE_LAMBDA_REF_NM, a = m->dispersion_alpha;
+    const double lo = sp->cfg.lambda_min_nm, hi = sp->cfg.lambda_max_nm;
+    const double cycles = fabs(delta_ref) * fabs(pow(ref / lo, a) / lo - pow(ref / hi, a) / hi);
+    const double need = fmax(PE_DISPERSIVE_MIN_SAMPLES, 3.0 * PE_DISPERSIVE_PER_CYCLE * cycles);
+    const biref_numeric_plan *plan = NULL;
+    for (int i = 0; i < sp->n_coherent; i++) {
+        plan = sp->coherent[i];
+        if (plan->samples >= need) break;
+    }
+    return plan;
+}
+
+/* White light with dispersion of C (docs/PHOTOELASTICITY.md, "Dispersion of birefringence"):
+ * the retardation is delta(λ) = delta_ref (ref / λ)^alpha, so the phase k delta(λ) is no longer
+ * linear in k and the table's S(e^{ikD}) does not apply; <t_e conj t_o> per band is the plan's
+ * weighted sum of the monochromatic series at each sample (box-averaged over the footprint's
+ * width, which scales with C(λ) as delta does). */
+static void white_dispersive_cross(const biref_pe_setup *s, const biref_spectral *sp, double delta_ref,
+                                   double width_ref, double tt, double q, double re[3], double im[3])
+{
+    const biref_numeric_plan *plan = dispersive_plan(sp, &s->material, delta_ref + width_ref);
+    const double ref = s->material.lambda_ref_nm > 0.0 ? s->material.lambda_ref_nm : BIREF_PE_LAMBDA_REF_NM;
+    for (int n = 0; n < plan->samples; n++) {
+        const double f = pow(ref / plan->lambda[n], s->material.dispersion_alpha);
+        const double complex z = cexp(I * plan->k[n] * delta_ref * f);
+        const double complex c = width_ref > 0.0 ? mono_cross_box(tt, q, z, width_ref * f, plan->lambda[n])
+                                                 : tt * z / (1.0 - q * z * z);
+        for (int j = 0; j < 3; j++) {
+            re[j] += plan->weight[n][j] * creal(c);
+            im[j] += plan->weight[n][j] * cimag(c);
+        }
+    }
+}
+
 void biref_pe_shade_footprint(const biref_pe_setup *s, const biref_spectral *sp, const biref_phase_prefilter *pf,
                               double width_nm, const biref_pe_principal *p, double xyz[3])
 {
@@ -145,8 +196,11 @@ void biref_pe_shade_footprint(const biref_pe_setup *s, const biref_spectral *sp,
      * path by about 2 n h (millimetres): far beyond the coherence length of a white or spectral-
      * lamp source, their interference averages out (for white light it is the table value
      * S(cos k 2nh) ~ 1e-6, docs). Within one order the e and o paths differ by (2m + 1) delta. */
+    /* Monochromatic light: C at its wavelength (dispersion of birefringence; exactly C_per_Pa when
+     * alpha is 0); white light: C at the reference wavelength, scaled per sample below. */
+    const double C = s->light == BIREF_PE_MONO ? biref_pe_C_at(&s->material, s->lambda_nm) : s->material.C_per_Pa;
     const double n_o = s->material.n0;
-    const double dn = s->material.C_per_Pa * (p->s1 - p->s2);
+    const double dn = C * (p->s1 - p->s2);
     const double n_e = n_o + dn;
     const double delta_nm = dn * s->thickness * 1e9;
     double tau_e, tau_o, rho2_e, rho2_o;
@@ -163,7 +217,7 @@ void biref_pe_shade_footprint(const biref_pe_setup *s, const biref_spectral *sp,
         /* <t_e conj t_o> = tau_e tau_o sum_m q^m e^{i k (2m+1) delta} = tau_e tau_o e^{ik delta} / (1 - q e^{2ik delta}). */
         const double ph = 2.0 * M_PI * delta_nm / s->lambda_nm;
         const double complex z = cexp(I * ph);
-        const double complex cross = width_nm > 0.0 ? mono_cross_box(tt, q, z, width_nm, s->lambda_nm)
+        const double complex cross = width_nm > 0.0 ? mono_cross_box(tt, q, z, width_nm * (C / s->material.C_per_Pa), s->lambda_nm)
                                                     : tt * z / (1.0 - q * z * z);
         const double v = incoherent + 2.0 * creal(gamma * cross);
         xyz[0] = xyz[1] = xyz[2] = v;
@@ -171,8 +225,9 @@ void biref_pe_shade_footprint(const biref_pe_setup *s, const biref_spectral *sp,
     }
     /* White light: band integrals S(e^{i k D}) = S(cos) + i S(sin) from the spectral table. */
     double cross_re[3] = {0, 0, 0}, cross_im[3] = {0, 0, 0};
-    double w = tt;
-    for (int m = 0; m <= PE_MAX_ORDER; m++) {
+    double w = s->material.dispersion_alpha != 0.0 ? 0.0 : tt;
+    if (w == 0.0) white_dispersive_cross(s, sp, delta_nm, pf ? width_nm : 0.0, tt, q, cross_re, cross_im);
+    for (int m = 0; m <= PE_MAX_ORDER && w > 0.0; m++) {
         double c[3], si[3];
         if (pf)
             biref_phase_integrals_box(pf, (2.0 * m + 1.0) * delta_nm, (2.0 * m + 1.0) * width_nm, c, si);
@@ -259,9 +314,12 @@ biref_status biref_pe_shade_state(const biref_pe_setup *s, const biref_integrato
     return BIREF_OK;
 }
 
-biref_status biref_pe_shade_general(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p,
-                                    int jitter, double span_nm, double xyz[3])
+biref_status biref_pe_shade_general(const biref_pe_setup *setup, const biref_spectral *sp,
+                                    const biref_pe_principal *p, int jitter, double span_nm, double xyz[3])
 {
+    /* One slab for the whole band: white light with dispersion of C has no such slab. */
+    if (setup->light == BIREF_PE_WHITE && setup->material.dispersion_alpha != 0.0) return BIREF_ERR_INVALID;
+    const biref_pe_setup at = biref_pe_setup_at_lambda(setup), *s = &at;
     biref_slab slab = biref_pe_slab_at(&s->material, s->thickness, s->eta_i, p);
     biref_slab_state st;
     biref_status r;
@@ -288,9 +346,11 @@ biref_status biref_pe_shade_general(const biref_pe_setup *s, const biref_spectra
     return BIREF_OK;
 }
 
-biref_status biref_pe_shade_oblique(const biref_pe_setup *s, const biref_spectral *sp, const biref_pe_principal *p,
-                                    double theta, double xyz[3])
+biref_status biref_pe_shade_oblique(const biref_pe_setup *setup, const biref_spectral *sp,
+                                    const biref_pe_principal *p, double theta, double xyz[3])
 {
+    if (setup->light == BIREF_PE_WHITE && setup->material.dispersion_alpha != 0.0) return BIREF_ERR_INVALID;
+    const biref_pe_setup at = biref_pe_setup_at_lambda(setup), *s = &at;
     biref_status r = biref_theta_check(theta, NULL, 0);
     if (r != BIREF_OK) return r;
     biref_slab slab = biref_pe_slab_best(&s->material, s->thickness, s->eta_i, p);

@@ -23,6 +23,7 @@ biref_status biref_pe_shade_integrated(const biref_pe_setup *s, const biref_inte
                                        const biref_pe_principal *p, double theta_rad, double xyz[3])
 {
     if (!s || !it || !p || !xyz || s->light != BIREF_PE_WHITE) return BIREF_ERR_INVALID;
+    if (s->material.dispersion_alpha != 0.0) return BIREF_ERR_INVALID; /* one slab for the band: no dispersion */
     biref_status r = biref_theta_check(theta_rad, NULL, 0);
     if (r != BIREF_OK) return r;
     /* Normal incidence: the model of biref_pe_shade_general; oblique: the closest uniaxial slab,

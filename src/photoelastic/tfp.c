@@ -15,7 +15,7 @@
  * (off the isoclinics of a plane polariscope at 0 degrees). */
 static biref_pe_principal state_of_order(const biref_pe_setup *s, double order, double lambda_ref_nm)
 {
-    const double ds = order * lambda_ref_nm * 1e-9 / (s->thickness * s->material.C_per_Pa);
+    const double ds = order * lambda_ref_nm * 1e-9 / (s->thickness * biref_pe_C_at(&s->material, lambda_ref_nm));
     biref_pe_principal p = {0.5 * ds, -0.5 * ds, 0.25 * M_PI, 0.0, 1.0};
     return p;
 }

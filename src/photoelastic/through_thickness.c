@@ -10,7 +10,23 @@
 biref_status biref_pe_stack(const biref_pe_material *m, double thickness_m, double eta_i, int n_layers,
                             const biref_pe_stress *stress, biref_stack *out, char *msg, size_t msg_len)
 {
-    biref_status s = biref_pe_material_check(m, msg, msg_len);
+    const double ref = m && m->lambda_ref_nm > 0.0 ? m->lambda_ref_nm : BIREF_PE_LAMBDA_REF_NM;
+    return biref_pe_stack_at(m, thickness_m, eta_i, n_layers, stress, ref, out, msg, msg_len);
+}
+
+biref_status biref_pe_stack_at(const biref_pe_material *dispersive, double thickness_m, double eta_i, int n_layers,
+                               const biref_pe_stress *stress, double lambda_nm, biref_stack *out, char *msg,
+                               size_t msg_len)
+{
+    biref_status s = biref_pe_material_check(dispersive, msg, msg_len);
+    if (s != BIREF_OK) return s;
+    if (!(lambda_nm > 0.0) || !isfinite(lambda_nm))
+        return biref_fail(msg, msg_len, "wavelength must be a positive finite length (got %g nm)", lambda_nm);
+    /* Every layer's slab with C at this wavelength (exactly C when alpha is 0). */
+    biref_pe_material at = *dispersive;
+    at.C_per_Pa = biref_pe_C_at(dispersive, lambda_nm);
+    at.dispersion_alpha = 0.0;
+    const biref_pe_material *m = &at;
     if (s != BIREF_OK) return s;
     if (n_layers < 1 || n_layers > BIREF_STACK_MAX_LAYERS)
         return biref_fail(msg, msg_len, "a plate through its thickness has 1 to %d layers (got %d)",

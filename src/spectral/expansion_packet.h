@@ -10,7 +10,9 @@
  * never depends on its neighbours. Hits the lanes do not take go the scalar way (scalar[k] = 1):
  * those the analytic kernel declines, degenerate legs (merged groups), pair or group orders above
  * BIREF_XP_LANE_ORDER, and slabs thin enough that groups of different orders interfere (their
- * round trip within the look-up table's far limit).
+ * round trip within the look-up table's far limit). Lights outside the paper's model (world-fixed
+ * polarizers: a real coherency and analyzer per hit) take series_polarized's path: one direction
+ * per side, the light's components in place of the four s/p pairs.
  *
  * One source, expansion_packet_kernel.inc, compiled per instruction set like the analytic kernel
  * (expansion_packet_<isa>.c, CMakeLists.txt biref_isa_object), on its primitives (simd/<isa>.h,
@@ -26,21 +28,28 @@
 #define BIREF_XP_LANE_ORDER 3
 
 /* T[k], R[k] as biref_integrate_hit gives them with the expansion (options o) under the paper's
- * light (w_in, mask), for the hits whose scalar[k] is 0; fp as for biref_packet_hits_kernel. */
+ * light (w_in, mask: the detected fraction of each output), for the hits whose scalar[k] is 0; fp
+ * as for biref_packet_hits_kernel. lights: NULL for the paper's light, else one real light per
+ * hit and side (w_in and mask unused), as biref_packet_hits_kernel takes them; hits whose light is
+ * diagonal in both C and P go the scalar way (the scalar expansion treats them as the paper's
+ * light, with both directions' energy balance). */
 typedef void (*biref_expansion_hits_kernel)(const biref_spectral *sp, const biref_expansion_opts *o,
                                             const double w_in[2], const double mask[2], const biref_packet_hit *hits,
                                             size_t n, double (*T)[3], double (*R)[3], unsigned char *scalar,
-                                            const biref_opl_footprint *fp);
+                                            const biref_opl_footprint *fp, const biref_packet_hit_light *lights);
 
 void biref_expansion_hits_baseline(const biref_spectral *sp, const biref_expansion_opts *o, const double w_in[2],
                                    const double mask[2], const biref_packet_hit *hits, size_t n, double (*T)[3],
-                                   double (*R)[3], unsigned char *scalar, const biref_opl_footprint *fp);
+                                   double (*R)[3], unsigned char *scalar, const biref_opl_footprint *fp,
+                                   const biref_packet_hit_light *lights);
 void biref_expansion_hits_avx2(const biref_spectral *sp, const biref_expansion_opts *o, const double w_in[2],
                                const double mask[2], const biref_packet_hit *hits, size_t n, double (*T)[3],
-                               double (*R)[3], unsigned char *scalar, const biref_opl_footprint *fp);
+                               double (*R)[3], unsigned char *scalar, const biref_opl_footprint *fp,
+                               const biref_packet_hit_light *lights);
 void biref_expansion_hits_avx512(const biref_spectral *sp, const biref_expansion_opts *o, const double w_in[2],
                                  const double mask[2], const biref_packet_hit *hits, size_t n, double (*T)[3],
-                                 double (*R)[3], unsigned char *scalar, const biref_opl_footprint *fp);
+                                 double (*R)[3], unsigned char *scalar, const biref_opl_footprint *fp,
+                                 const biref_packet_hit_light *lights);
 
 /* The kernel of an instruction set (NULL for BIREF_SIMD_SCALAR). */
 biref_expansion_hits_kernel biref_simd_expansion_kernel(biref_simd_isa isa);

@@ -313,7 +313,7 @@ void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_
     else if (it->xhits && light->sp_model && (!fp || one_prefilter(fp, n))) {
         /* The scalar expansion detects through P = diag(mask) as a Jones matrix: weights mask^2. */
         const double m2[2] = {light->mask[0] * light->mask[0], light->mask[1] * light->mask[1]};
-        it->xhits(it->sp, &it->xopts, light->w_in, m2, hits, n, T, R, scalar, fp);
+        it->xhits(it->sp, &it->xopts, light->w_in, m2, hits, n, T, R, scalar, fp, NULL);
     } else
         memset(scalar, 1, n);
 }
@@ -324,6 +324,8 @@ void biref_integrate_packet_hits_lit(const biref_integrator *it, const biref_pac
 {
     if (it->hits && (!fp || one_prefilter(fp, n)))
         it->hits(it->sp, NULL, NULL, hits, n, T, R, scalar, fp, lights);
+    else if (it->xhits && (!fp || one_prefilter(fp, n)))
+        it->xhits(it->sp, &it->xopts, NULL, NULL, hits, n, T, R, scalar, fp, lights);
     else
         memset(scalar, 1, n);
 }

@@ -124,6 +124,21 @@ expect_error "size zero" photoelastic --preset disk --size 0 -o "$tmpdir/x.png"
 expect_error "tilt too large" photoelastic --preset disk --tilt-deg 85 -o "$tmpdir/x.png"
 expect_error "bad view" photoelastic --preset disk --window-mm 1,0,1,1 -o "$tmpdir/x.png"
 expect_error "unknown option" photoelastic --preset disk --frobnicate -o "$tmpdir/x.png"
+# Dispersion of birefringence: alpha 0 is the default picture exactly; another alpha changes the
+# colours and is reported; out-of-range values and tilted white views with alpha are refused.
+expect_ok "alpha default" photoelastic --preset beam --size 48 -o "$tmpdir/alpha_default.png"
+expect_ok "alpha 0" photoelastic --preset beam --size 48 --dispersion-alpha 0 -o "$tmpdir/alpha0.png"
+expect_ok "alpha 0.4" photoelastic --preset beam --size 48 --dispersion-alpha 0.4 -o "$tmpdir/alpha04.png" --json
+expect_grep "alpha reported" '"dispersion_alpha":[[:space:]]*0.4'
+"$BIREF" diff "$tmpdir/alpha_default.png" "$tmpdir/alpha0.png" --json | grep -Eq '"max":[[:space:]]*0[,}]' ||
+  { echo "FAIL (--dispersion-alpha 0 is not the default picture)"; fails=$((fails + 1)); }
+"$BIREF" diff "$tmpdir/alpha0.png" "$tmpdir/alpha04.png" --json | grep -Eq '"max":[[:space:]]*0[,}]' &&
+  { echo "FAIL (--dispersion-alpha 0.4 changes nothing)"; fails=$((fails + 1)); }
+expect_ok "alpha mono tilted" photoelastic --preset disk --size 24 --light mono --tilt-deg 20 --dispersion-alpha 0.3 \
+  -o "$tmpdir/alpha_tilt.png"
+expect_error "alpha tilted white" photoelastic --preset disk --size 24 --tilt-deg 20 --dispersion-alpha 0.3 -o "$tmpdir/x.png"
+expect_error "alpha out of range" photoelastic --preset disk --dispersion-alpha 5 -o "$tmpdir/x.png"
+expect_error "alpha nan" photoelastic --preset disk --dispersion-alpha nan -o "$tmpdir/x.png"
 expect_error "stray argument" photoelastic --preset disk extra -o "$tmpdir/x.png"
 expect_error "unwritable output" photoelastic --preset disk -o "$tmpdir/no/such/dir/x.png"
 [ -e "$tmpdir/x.png" ] && { echo "FAIL (a picture was written by a failing call)"; fails=$((fails + 1)); }

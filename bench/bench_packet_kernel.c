@@ -82,6 +82,7 @@ int main(int argc, char **argv)
         hits[k] = (biref_packet_hit){1.40, 1.38, {axis[0] * c - axis[1] * s, axis[1] * c + axis[0] * s, axis[2] / len},
                                      thickness, 1.0, sin(theta)};
         fp[k].pf = pf;
+        fp[k].disp = NULL;
         for (int leg = 0; leg < 4; leg++) /* a fringe's worth of path across the pixel */
             fp[k].grad[leg][0] = fp[k].grad[leg][1] = (leg & 1 ? 260.0 : 250.0) * thickness / 1.25e6;
     }

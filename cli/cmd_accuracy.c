@@ -50,7 +50,8 @@ enum {
     OPT_COST_RUNS,
     OPT_COST_ITERS,
     OPT_CMF,
-    OPT_RANGE
+    OPT_RANGE,
+    OPT_THICKNESS
 };
 
 /* A positive angle or time option; -1 after an error. */
@@ -65,12 +66,14 @@ static int handle_number(acc_options *o, int code, const char *arg)
 {
     long v;
     switch (code) {
+    case OPT_THICKNESS: return positive("--thickness-um", arg, &o->thickness_um);
     case OPT_THETA_MAX:
+        o->theta_max_given = 1;
         if (cli_parse_double(CMD, "--theta-max-deg", arg, &o->theta_max_deg)) return -1;
         if (o->theta_max_deg < 0.0 || o->theta_max_deg >= 90.0)
             return cli_error(CMD, "--theta-max-deg: need 0 <= A < 90, got %g", o->theta_max_deg), -1;
         return 0;
-    case OPT_THETA_STEP: return positive("--theta-step-deg", arg, &o->theta_step_deg);
+    case OPT_THETA_STEP: o->theta_step_given = 1; return positive("--theta-step-deg", arg, &o->theta_step_deg);
     case OPT_CHECK_STEP: return positive("--check-step-deg", arg, &o->check_step_deg);
     case OPT_AZIMUTHS:
         if (cli_parse_int(CMD, "--azimuths", arg, 1, 3600, &v)) return -1;
@@ -130,6 +133,14 @@ static const cli_opt OPTS[] = {
                "or a JSON file: [{\"name\", \"eta_o\", \"eta_e\", \"axis\": [a,b,c],\n"
                "\"thickness_mm\" (or _um, _nm), \"eta_i\", \"polarization\": \"0.75,0.25\",\n"
                "\"analyzer\": \"none\"|\"s\"|\"p\"}, ...]"),
+    CLI_STRING("material", 0, "NAME", F(material),
+               "instead: the closed-form methods with a dispersive material\n"
+               "against the dispersive ground truth (docs/ACCURACY-DISPERSION.md),\n"
+               "one plate of a catalogue material (biref material list), two optic\n"
+               "axes, 0-85 deg in 2 deg steps unless given, four lights, T and R"),
+    CLI_CUSTOM("thickness-um", "T", OPT_THICKNESS,
+               "with --material: the plate's thickness (default: the study's plate,\n"
+               "calcite 50, quartz 200, rutile 10, linbo3 20, sapphire 1000)"),
     CLI_CUSTOM("sweep-delta-eps", "L", OPT_SWEEP,
                "comma-separated eps_e - eps_o values applied to every material\n"
                "(eta_o kept, eta_e varied), or none (default none)"),
@@ -211,5 +222,5 @@ int cmd_accuracy(int argc, char **argv)
     const int p = parse(argc, argv, &o);
     if (p) return p > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
     if (acc_options_finish(&o)) return CLI_EXIT_USAGE;
-    return acc_study(&o);
+    return o.material ? acc_dispersion_study(&o) : acc_study(&o);
 }

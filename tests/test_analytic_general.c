@@ -30,6 +30,7 @@ static void random_thick_slab(test_rng *r, biref_slab *s, double *theta)
 static void random_footprint(test_rng *r, biref_opl_footprint *fp)
 {
     fp->pf = pf;
+    fp->disp = NULL;
     for (int l = 0; l < 4; l++)
         for (int k = 0; k < 2; k++) fp->grad[l][k] = test_uniform(r, -300, 300);
 }
@@ -92,7 +93,7 @@ static void footprint_terms_reduce_to_points(void)
         double complex C[2][2], P[2][2];
         CHECK(biref_stokes_to_coherency(S, C) == BIREF_OK);
         biref_analyzer_linear(test_uniform(&rng, 0, M_PI), P);
-        biref_opl_footprint fp, zero = {pf, {{0}}};
+        biref_opl_footprint fp, zero = {pf, {{0}}, NULL};
         random_footprint(&rng, &fp);
         for (int which = 0; which < 2; which++) {
             double E0[3], H0[3], Ez[3], Hz[3], Ef[3], Hf[3];

@@ -163,6 +163,7 @@ static void test_hit_kernels_vs_scalar(void)
 static void random_footprint(test_rng *rng, const biref_phase_prefilter *pf, biref_opl_footprint *fp)
 {
     fp->pf = pf;
+    fp->disp = NULL;
     const double scale = exp(test_uniform(rng, log(1e-5), log(3e4)));
     for (int l = 0; l < 4; l++)
         for (int k = 0; k < 2; k++) fp->grad[l][k] = test_uniform(rng, 0, 1) < 0.2 ? 0.0 : scale * test_uniform(rng, -1, 1);

@@ -23,9 +23,9 @@
 
 static int quick;
 
-/* A random slab: mostly 0.2-5 mm (the lanes' range: groups of different orders do not
- * interfere), every fifth 1-200 um (thin: the scalar path), every seventh in a denser surround
- * (total reflection inside: the scalar path); any axis, weak to strong birefringence, 0-89 deg. */
+/* A random slab: mostly 0.2-5 mm (groups of different orders do not interfere), every fifth
+ * 1-200 um (thin: they do, or the coherent regime), every seventh in a denser surround (total
+ * reflection inside: the scalar path); any axis, weak to strong birefringence, 0-89 deg. */
 static void random_slab(test_rng *rng, int k, biref_slab *s, double *theta)
 {
     test_random_axis(rng, s->axis);
@@ -67,7 +67,7 @@ static void kernels_vs_scalar(const biref_expansion_opts *xo, int prefilter, uns
     static biref_packet_hit hits[N];
     static biref_opl_footprint fps[N];
     static double wantT[N][3], wantR[N][3], T[N][3], R[N][3];
-    static unsigned char scalar[N], thick[N];
+    static unsigned char scalar[N], thick[N], thin[N];
     test_rng rng = {seed};
     const double w_in[2] = {0.7, 0.3}, mask[2] = {0.4, 1.0};
     biref_light light;
@@ -82,6 +82,7 @@ static void kernels_vs_scalar(const biref_expansion_opts *xo, int prefilter, uns
         hits[n] = (biref_packet_hit){s.eta_o, s.eta_e, {0, 0, 0}, s.thickness_nm, s.eta_i, s.eta_i * sin(theta)};
         biref_axis_unit_unchecked(s.axis, hits[n].axis);
         thick[n] = s.eta_i == 1.0 && s.thickness_nm > 4e5 && theta < 80 * M_PI / 180;
+        thin[n] = s.eta_i == 1.0 && s.thickness_nm > 2e4 && s.thickness_nm < 2e5 && theta < 60 * M_PI / 180;
         biref_opl_footprint fpR;
         if (pf) {
             random_footprint(&rng, pf, &fps[n]);
@@ -104,20 +105,24 @@ static void kernels_vs_scalar(const biref_expansion_opts *xo, int prefilter, uns
         const double m2[2] = {mask[0] * mask[0], mask[1] * mask[1]};
         biref_simd_expansion_kernel((biref_simd_isa)isa)(sp, xo, w_in, m2, hits, n, T, R, scalar, pf ? fps : NULL, NULL);
         double worst = 0.0;
-        int taken = 0, n_thick = 0, thick_taken = 0;
+        int taken = 0, n_thick = 0, thick_taken = 0, n_thin = 0, thin_taken = 0;
         for (size_t k = 0; k < n; k++) {
             n_thick += thick[k];
+            n_thin += thin[k];
             if (scalar[k]) continue;
             taken++;
             thick_taken += thick[k];
+            thin_taken += thin[k];
             for (int b = 0; b < 3; b++)
                 worst = fmax(worst, fmax(fabs(T[k][b] - wantT[k][b]), fabs(R[k][b] - wantR[k][b])));
         }
-        printf("%s%s, order %d, tolerance %g: %d of %zu hits in lanes (%d of %d thick), max |packet - scalar| = %.3g\n",
+        printf("%s%s, order %d, tolerance %g: %d of %zu hits in lanes (%d of %d thick, %d of %d 20-200 um), "
+               "max |packet - scalar| = %.3g\n",
                biref_simd_isa_name((biref_simd_isa)isa), pf ? " prefiltered" : "", xo->order, xo->tolerance, taken, n,
-               thick_taken, n_thick, worst);
+               thick_taken, n_thick, thin_taken, n_thin, worst);
         CHECK(worst < (pf ? 5e-12 : 1e-12)); /* box averages: two look-ups per integral */
         CHECK(thick_taken * 10 >= n_thick * 7);
+        CHECK(thin_taken * 2 >= n_thin); /* groups of different orders interfere there */
     }
     biref_integrator_destroy(it);
     biref_phase_prefilter_destroy(pf);
@@ -274,8 +279,8 @@ static float *render_with(const char *path, const char *isa, biref_antialias aa,
  * and prefiltered; the same image on one thread. */
 static void renders_vs_scalar(void)
 {
-    const char *scenes[] = {"examples/fig9a.json", "examples/fig9c_analyzer45.json", "examples/fig9c.json",
-                            "examples/fig9b.json"};
+    const char *scenes[] = {"examples/fig9a.json", "examples/fig9c_analyzer45.json", "examples/default.json",
+                            "examples/fig9c.json", "examples/fig9b.json"};
     const size_t n_scenes = quick ? 2 : sizeof scenes / sizeof scenes[0];
     const int W = quick ? 24 : 48, H = quick ? 14 : 27;
     const size_t n = (size_t)W * H;

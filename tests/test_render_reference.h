@@ -115,7 +115,7 @@ static int ref_sample(const biref_renderer *r, double fx, double fy, double h, d
     v3_axpy(r->cam.origin, best, dir, hp);
     biref_hit_frames fr;
     biref_shading_frames(hit->normal, hit->tangent, hit->axis_world, &hit->base, dir, &fr);
-    biref_opl_footprint fp;
+    biref_opl_footprint fp = {0};
     if (r->prefilter) {
         double dx[3], dy[3];
         ref_camera_ray(&r->cam, fx + h, fy, dx);

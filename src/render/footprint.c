@@ -20,6 +20,7 @@ void biref_render_footprint_rays(const biref_renderer *r, const render_slab *sl,
                                  const double dir_x[3], const double dir_y[3], biref_opl_footprint *fp)
 {
     fp->pf = r->prefilter;
+    fp->disp = NULL;
     biref_leg_consts k;
     biref_leg_consts_of(sl, &k);
     double o0[4], o1[4];

@@ -289,13 +289,19 @@ void biref_analytic_terms_footprint(const biref_spectral *sp, const biref_slab_s
 
 void biref_spectrum_analytic(const biref_spectral *sp, const biref_slab_state *st, biref_spectrum *out)
 {
+    biref_spectrum_analytic_footprint(sp, st, NULL, out);
+}
+
+void biref_spectrum_analytic_footprint(const biref_spectral *sp, const biref_slab_state *st,
+                                       const biref_opl_footprint *fp, biref_spectrum *out)
+{
     const biref_numeric_plan *coherent = biref_coherent_plan(sp, st);
     if (coherent) {
         biref_spectrum_numeric(coherent, st, out);
         return;
     }
     double E[2][2][2][3], X[2][2][2][3];
-    for (int d = 0; d < 2; d++) paper_result(sp, st, NULL, d, E[d], X[d]); /* eqs. 25-26 */
+    for (int d = 0; d < 2; d++) paper_result(sp, st, fp, d, E[d], X[d]); /* eqs. 25-26 */
     normalize_energy(X);
     memcpy(out->T, X[BIREF_TRANSMISSION], sizeof out->T);
     memcpy(out->R, X[BIREF_REFLECTION], sizeof out->R);

@@ -256,7 +256,14 @@ biref_status biref_expansion_polarized_footprint(const biref_spectral *sp, const
 biref_status biref_spectrum_expansion(const biref_spectral *sp, const biref_slab_state *st,
                                       const biref_expansion_opts *opts, biref_spectrum *out)
 {
-    biref_status s = expansion_pairs(sp, st, NULL, opts, out, NULL);
+    return biref_spectrum_expansion_footprint(sp, st, NULL, opts, out);
+}
+
+biref_status biref_spectrum_expansion_footprint(const biref_spectral *sp, const biref_slab_state *st,
+                                                const biref_opl_footprint *fp, const biref_expansion_opts *opts,
+                                                biref_spectrum *out)
+{
+    biref_status s = expansion_pairs(sp, st, fp, opts, out, NULL);
     if (s != BIREF_OK) return s;
     for (int i = 0; i < 2; i++)
         for (int o = 0; o < 2; o++)

@@ -8,15 +8,18 @@
  * a hit's state (transmission) and its flip (reflection), each with both directions, in lanes.
  * Each lane keeps its own orders (masks), so a lane's result is the scalar path's to rounding and
  * never depends on its neighbours. Hits the lanes do not take go the scalar way (scalar[k] = 1):
- * those the analytic kernel declines, degenerate legs (merged groups), pair or group orders above
- * BIREF_XP_LANE_ORDER, and slabs thin enough that groups of different orders interfere (their
- * round trip within the look-up table's far limit). Lights outside the paper's model (world-fixed
+ * those the analytic kernel declines, degenerate legs (merged groups) and pair or group orders
+ * above BIREF_XP_LANE_ORDER. Groups of different orders interfere in slabs whose round trip lies
+ * within the look-up table's far limit: those pairs go per lag against the kept lower orders.
+ * Lights outside the paper's model (world-fixed
  * polarizers: a real coherency and analyzer per hit) take series_polarized's path: one direction
  * per side, the light's components in place of the four s/p pairs.
  *
  * One source, expansion_packet_kernel.inc, compiled per instruction set like the analytic kernel
  * (expansion_packet_<isa>.c, CMakeLists.txt biref_isa_object), on its primitives (simd/<isa>.h,
- * packet_lookup.inc, packet_setup.inc, packet_limit.inc). */
+ * packet_lookup.inc, packet_setup.inc, packet_limit.inc), with its lag integrals
+ * (expansion_packet_lags.inc), coherences (expansion_packet_coherence.inc) and lights
+ * (expansion_packet_light.inc). */
 #ifndef BIREF_EXPANSION_PACKET_H
 #define BIREF_EXPANSION_PACKET_H
 

@@ -102,13 +102,7 @@ static biref_status side_expansion(const biref_integrator *it, const biref_slab_
 static biref_status stack_closed_form(const biref_integrator *it, const biref_stack_state *st, int which,
                                       const biref_light *l, double xyz[3])
 {
-    biref_stack_spectrum_opts o;
-    biref_stack_spectrum_opts_default(&o);
-    biref_spectrum out;
-    double m[2][3];
-    biref_status s = biref_stack_spectrum(it->sp, st, &o, l, &out, m[0], m[1], NULL, NULL, 0);
-    memcpy(xyz, m[which == BIREF_SIDE_REFLECTION], sizeof m[0]);
-    return s;
+    return biref_stack_light_face(it->sp, st, l, which, xyz);
 }
 
 /* A stack by the numeric methods: the integrator's plan, exact Jones matrices per sample. */

@@ -14,6 +14,7 @@
 
 #include "spectral/phase_tables.h"
 #include "spectral/spectral_internal.h"
+#include "spectral/subband.h"
 #include "spectral/table_build.h"
 
 struct biref_phase_prefilter {
@@ -115,6 +116,9 @@ void biref_opl_footprint_flip(const biref_opl_footprint *in, biref_opl_footprint
 {
     static const int swap[4] = {BIREF_LEG_UP_O, BIREF_LEG_UP_E, BIREF_LEG_DOWN_O, BIREF_LEG_DOWN_E};
     out->pf = in->pf;
+    /* The legs' dispersion is per face: a flipped dispersive slab is integrated from its own
+     * flipped geometry (analytic_dispersive.c), never through a flipped footprint. */
+    out->disp = NULL;
     for (int l = 0; l < 4; l++) {
         out->grad[l][0] = in->grad[swap[l]][0];
         out->grad[l][1] = in->grad[swap[l]][1];
@@ -124,6 +128,10 @@ void biref_opl_footprint_flip(const biref_opl_footprint *in, biref_opl_footprint
 void biref_phase_integrals_footprint(const biref_spectral *sp, const biref_opl_footprint *fp, double opd,
                                      const int n[4], double c[3], double s[3])
 {
+    if (fp && fp->disp) {
+        biref_lag_integrals(sp, fp->disp, opd, n, c, s, NULL, NULL);
+        return;
+    }
     if (!fp || !fp->pf) {
         biref_spectral_phase_integrals(sp, opd, c, s);
         return;

@@ -32,9 +32,13 @@ enum { BIREF_LEG_DOWN_O = 0, BIREF_LEG_DOWN_E = 1, BIREF_LEG_UP_O = 2, BIREF_LEG
  * across the pixel along image axis k (x, y). Every path difference is an integer combination
  * sum_l n_l opl_l, so its change across the pixel is sum_l n_l grad[l]; the pixel averages its
  * phase integrals over a box of the same variance as that (linear) change over the square pixel. */
+struct biref_leg_dispersion;
 typedef struct {
     const biref_phase_prefilter *pf;
     double grad[4][2];
+    /* A dispersive material's leg phases (spectral/subband.h), or NULL: every phase integral is
+     * then the sum over sub-bands of the lag's tangents (docs/PHYSICS.md §7), and pf is not used. */
+    struct biref_leg_dispersion *disp; /* (sampled and cached as the look-ups go) */
 } biref_opl_footprint;
 
 /* The same footprint for the state lit from the other face (biref_slab_state_flip swaps legs). */
@@ -54,6 +58,14 @@ biref_status biref_expansion_polarized_footprint(const biref_spectral *sp, const
                                                  const biref_opl_footprint *fp, int which, const double complex C[2][2],
                                                  const double complex P[2][2], const biref_expansion_opts *opts,
                                                  double xyz[3], int *order_used);
+
+/* The four pairs of both directions (biref_spectrum_analytic, biref_spectrum_expansion) with the
+ * phase integrals through the footprint fp (NULL: identical to the plain functions). */
+void biref_spectrum_analytic_footprint(const biref_spectral *sp, const biref_slab_state *st,
+                                       const biref_opl_footprint *fp, biref_spectrum *out);
+biref_status biref_spectrum_expansion_footprint(const biref_spectral *sp, const biref_slab_state *st,
+                                                const biref_opl_footprint *fp, const biref_expansion_opts *opts,
+                                                biref_spectrum *out);
 
 /* biref_integrate with the phase integrals averaged over the footprint fp (the numeric methods,
  * which have no phase table, ignore it; NULL: identical to biref_integrate). */

@@ -8,6 +8,7 @@
 #include "error.h"
 #include "spectral/spectral_internal.h"
 #include "spectral/phase_tables.h"
+#include "spectral/subband.h"
 #include "spectral/table_build.h"
 
 /* Quadrature step for the direct (reference) evaluation. */
@@ -163,6 +164,7 @@ void biref_spectral_destroy(biref_spectral *sp)
     free(sp->carrier);
     free(sp->packet_table);
     for (int i = 0; i < sp->n_coherent; i++) biref_numeric_plan_destroy(sp->coherent[i]);
+    biref_subbands_destroy(atomic_load_explicit(&sp->subbands, memory_order_acquire));
     free(sp);
 }
 

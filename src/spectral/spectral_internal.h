@@ -4,6 +4,7 @@
 
 #include <complex.h>
 #include <math.h>
+#include <stdatomic.h>
 
 #include "biref/experimental.h" /* the library is built with BIREF_EXPERIMENTAL_API */
 #include "biref/spectral.h"
@@ -41,6 +42,8 @@ struct biref_spectral {
     /* Midpoint plans for the coherent regime (src/spectral/coherent.c), 48 * 2^i samples. */
     int n_coherent;
     biref_numeric_plan *coherent[BIREF_COHERENT_PLANS];
+    /* Sub-band tables for dispersive materials (subband.h), made on first use. */
+    struct biref_subbands *_Atomic subbands;
 };
 
 /* Twice the RMS width of colour-matching band j in wavenumber, S((k − k_j)², Λ_j)^½ (1/nm):

@@ -59,10 +59,13 @@ if [ "$rc" -ne 2 ] || [ "$(grep -c '^biref render: error: ' "$tmpdir/err")" -ne 
   echo "FAIL (bad scene on ranks 1-2): rc=$rc"; sed 's/^/  stderr: /' "$tmpdir/err" | head -5; fails=$((fails + 1))
 fi
 
-# A command that does not share its work refuses, once.
+# A command that does not share its work refuses, once. (Not in the sanitizer build: mpirun takes
+# seconds to end a job whose processes failed.)
 rc=0
-"${mpi[@]}" "$BIREF" slab --eta-o 1.5 --eta-e 1.6 --axis 0,1,0 --thickness-um 10 >"$tmpdir/out" 2>"$tmpdir/err" || rc=$?
-if [ "$rc" -ne 2 ] || [ "$(grep -c '^biref slab: error: ' "$tmpdir/err")" -ne 1 ] || [ -s "$tmpdir/out" ]; then
+[ -n "${BIREF_TEST_QUICK:-}" ] ||
+  "${mpi[@]}" "$BIREF" slab --eta-o 1.5 --eta-e 1.6 --axis 0,1,0 --thickness-um 10 >"$tmpdir/out" 2>"$tmpdir/err" || rc=$?
+if [ -z "${BIREF_TEST_QUICK:-}" ] &&
+   { [ "$rc" -ne 2 ] || [ "$(grep -c '^biref slab: error: ' "$tmpdir/err")" -ne 1 ] || [ -s "$tmpdir/out" ]; }; then
   echo "FAIL (slab under mpirun): rc=$rc"; sed 's/^/  stderr: /' "$tmpdir/err" | head -5; fails=$((fails + 1))
 fi
 

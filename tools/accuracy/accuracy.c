@@ -30,8 +30,27 @@ void acc_options_default(acc_options *o)
     biref_spectral_config_default(&o->scfg);
 }
 
+/* --material: the options of the other study are refused, the grid defaults to 0-85° in 2° steps. */
+static int finish_dispersion(acc_options *o)
+{
+    acc_options d;
+    acc_options_default(&d);
+    if (strcmp(o->materials, "fig9") || o->nsweep || o->cost || o->nphi != d.nphi || o->samples_ref != d.samples_ref ||
+        o->samples_check != d.samples_check || o->plot_dir || o->check_step_deg != d.check_step_deg)
+        return cli_error(ACC_CMD, "--material: takes only --thickness-um, --theta-max-deg, --theta-step-deg, --cmf, "
+                                  "--range-nm, --threads, --csv, --markdown and --json"),
+               -1;
+    if (!(o->thickness_um > 0.0) && !(acc_dispersion_default_thickness_um(o->material) > 0.0))
+        return cli_error(ACC_CMD, "--material %s: needs --thickness-um (the study has no plate of it)", o->material), -1;
+    if (!o->theta_max_given) o->theta_max_deg = 85.0;
+    if (!o->theta_step_given) o->theta_step_deg = 2.0;
+    return 0;
+}
+
 int acc_options_finish(acc_options *o)
 {
+    if (!o->material && o->thickness_um > 0.0) return cli_error(ACC_CMD, "--thickness-um: needs --material"), -1;
+    if (o->material && finish_dispersion(o)) return -1;
     if (o->cost_only && (o->csv_path || o->plot_dir))
         return cli_error(ACC_CMD, "--cost-only: no accuracy sweep, so no --csv or --plot-dir"), -1;
     if ((o->cost_opts.fixed_iters > 0) && !o->cost)

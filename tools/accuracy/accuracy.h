@@ -33,6 +33,10 @@ typedef struct {
     int progress; /* unused: --progress and --quiet are taken for every command (cli_progress.h) */
     const char *csv_path, *md_path, *plot_dir;
     int json;
+    /* --material: the dispersive study (dispersion.c) of one plate of a catalogue material */
+    const char *material;
+    double thickness_um; /* 0: the study's plate of that material */
+    int theta_max_given, theta_step_given;
     /* derived by acc_options_finish */
     int ntheta, kcheck;
 } acc_options;
@@ -44,5 +48,10 @@ int acc_options_finish(acc_options *o);
 /* Runs the study and writes its reports. Returns a CLI exit code (0 ok, 1 failure, 2 bad input),
  * after one error line on stderr unless 0. */
 int acc_study(const acc_options *o);
+/* The closed-form methods with dispersion against the dispersive ground truth, one plate
+ * (o->material, o->thickness_um); a CLI exit code. docs/ACCURACY-DISPERSION.md. */
+int acc_dispersion_study(const acc_options *o);
+/* The thickness of the study's plate of a material (µm), 0 when it has none. */
+double acc_dispersion_default_thickness_um(const char *material);
 
 #endif

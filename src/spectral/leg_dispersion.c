@@ -1,0 +1,209 @@
+/* The legs' phases of a dispersive slab across the band, and the phase integrals of a lag from
+ * the sub-band tables (subband.h, docs/PHYSICS.md §7). */
+#include <complex.h>
+#include <math.h>
+#include <string.h>
+
+#include "optics/modes_internal.h"
+#include "optics/slab_internal.h"
+#include "spectral/phase_prefilter.h"
+#include "spectral/subband.h"
+
+/* Half the step of the central difference of the paths (in λ, nm, through the group index): its
+ * truncation error ~h²/6 d³opl/dλ³ is far below the tables' for every catalogue material. */
+#define DIFF_NM 0.1
+
+/* Re(opl) of the four legs (biref_opl_footprint order) for indices n[o, e]: the normal
+ * components of the modes (eq. 2) times the thickness, as biref_slab_prepare. */
+static void leg_paths(const double n[2], const double axis[3], double K, double d, double opl[4])
+{
+    double complex q[4];
+    biref_uniaxial_normal_components(n[0], n[1], axis, K, q);
+    opl[BIREF_LEG_DOWN_O] = -creal(q[BIREF_MODE_O_DOWN]) * d;
+    opl[BIREF_LEG_DOWN_E] = -creal(q[BIREF_MODE_E_DOWN]) * d;
+    opl[BIREF_LEG_UP_O] = creal(q[BIREF_MODE_O_UP]) * d;
+    opl[BIREF_LEG_UP_E] = creal(q[BIREF_MODE_E_UP]) * d;
+}
+
+/* The legs' paths at λ and their derivatives dopl/dλ: a central difference ±DIFF_NM in λ taken
+ * through the indices' slopes dn/dλ = (n − n_g)/λ (one evaluation of the material). */
+static biref_status paths_and_slopes(const biref_material *m, const double axis[3], double K, double d, double lambda,
+                                     double opl[4], double dopl[4])
+{
+    double n[2], ng[2];
+    biref_status s = biref_material_indices(m, lambda, n, ng);
+    if (s != BIREF_OK) return s;
+    leg_paths(n, axis, K, d, opl);
+    const double slope[2] = {(n[0] - ng[0]) / lambda, (n[1] - ng[1]) / lambda};
+    if (slope[0] == 0.0 && slope[1] == 0.0) {
+        for (int l = 0; l < 4; l++) dopl[l] = 0.0;
+        return BIREF_OK;
+    }
+    double lo[4], hi[4];
+    leg_paths((const double[2]){n[0] - DIFF_NM * slope[0], n[1] - DIFF_NM * slope[1]}, axis, K, d, lo);
+    leg_paths((const double[2]){n[0] + DIFF_NM * slope[0], n[1] + DIFF_NM * slope[1]}, axis, K, d, hi);
+    for (int l = 0; l < 4; l++) dopl[l] = (hi[l] - lo[l]) / (2.0 * DIFF_NM);
+    return BIREF_OK;
+}
+
+/* Samples point p: the legs' phases and group paths. */
+static void sample(biref_leg_dispersion *ld, int p)
+{
+    const double k = biref_subband_points(ld->sb)[p], lambda = 2.0 * M_PI / k;
+    double opl[4], dopl[4];
+    biref_status s = paths_and_slopes(ld->m, ld->axis, ld->K, ld->d, lambda, opl, dopl);
+    if (s != BIREF_OK && ld->failed == BIREF_OK) ld->failed = s;
+    for (int l = 0; l < 4; l++) {
+        /* φ = k opl, φ' = d(k opl)/dk = opl − λ dopl/dλ: the group path */
+        ld->phi[l][p] = s == BIREF_OK ? k * opl[l] : NAN;
+        ld->grp[l][p] = s == BIREF_OK ? opl[l] - lambda * dopl[l] : NAN;
+        if (s == BIREF_OK && dopl[l] != 0.0) ld->flat = 0;
+    }
+    ld->have[p] = 1;
+}
+
+biref_status biref_leg_dispersion_init(const biref_spectral *sp, const biref_material *m, const biref_slab *geometry,
+                                       double theta, biref_leg_dispersion *ld)
+{
+    ld->sb = biref_spectral_subbands(sp);
+    if (!ld->sb) return BIREF_ERR_NOMEM;
+    ld->m = m;
+    biref_axis_unit_unchecked(geometry->axis, ld->axis);
+    ld->K = geometry->eta_i * sin(theta);
+    ld->d = geometry->thickness_nm;
+    ld->flat = 1;
+    ld->failed = BIREF_OK;
+    ld->cache = NULL;
+    memset(ld->have, 0, sizeof ld->have);
+    const int last = BIREF_SUBBAND_POINTS - 1;
+    sample(ld, 0);
+    sample(ld, last / 2);
+    sample(ld, last);
+    /* Flat only if no point at all depends on λ (a table may be flat in places). */
+    for (int p = 1; ld->flat && ld->failed == BIREF_OK && p < last; p++)
+        if (!ld->have[p]) sample(ld, p);
+    return ld->failed;
+}
+
+/* The largest distance of the lag's phase Phi from the tangent at each sub-band's midpoint, at the
+ * sub-band's two edges (level L: 2^L sub-bands over the sample points). */
+static double level_residual(const double *Phi, const double *G, const double *k, int level)
+{
+    const int span = (BIREF_SUBBAND_POINTS - 1) >> level;
+    double worst = 0.0;
+    for (int a = 0; a + span < BIREF_SUBBAND_POINTS; a += span) {
+        const int mid = a + span / 2, e = a + span;
+        worst = fmax(worst, fabs(Phi[a] - Phi[mid] - G[mid] * (k[a] - k[mid])));
+        worst = fmax(worst, fabs(Phi[e] - Phi[mid] - G[mid] * (k[e] - k[mid])));
+    }
+    return worst;
+}
+
+/* The lag's phase and group path at sample point p. */
+static void lag_at(biref_leg_dispersion *ld, const int n[4], int p, double *Phi, double *G)
+{
+    if (!ld->have[p]) sample(ld, p);
+    Phi[p] = G[p] = 0.0;
+    for (int l = 0; l < 4; l++) {
+        Phi[p] += n[l] * ld->phi[l][p];
+        G[p] += n[l] * ld->grp[l][p];
+    }
+}
+
+/* The sum over the 2^level sub-bands of the tangents at their midpoints. */
+static void subband_sum(const biref_subbands *sb, const double *Phi, const double *G, const double *k, int level,
+                        double c[3], double s[3])
+{
+    double complex v[3] = {0.0, 0.0, 0.0};
+    const int span = (BIREF_SUBBAND_POINTS - 1) >> level;
+    for (int b = 0; b < (1 << level); b++) {
+        const int mid = b * span + span / 2;
+        double complex t[3];
+        biref_subband_eval(sb, level, b, G[mid], t);
+        const double complex rot = cycles_exp((Phi[mid] - k[mid] * G[mid]) / (2.0 * M_PI)); /* the tangent's offset */
+        for (int j = 0; j < 3; j++) v[j] += rot * t[j];
+    }
+    for (int j = 0; j < 3; j++) {
+        c[j] = creal(v[j]);
+        s[j] = cimag(v[j]);
+    }
+}
+
+/* The cache slot of lag n: where it is stored, or the free slot where it would go; -1 when the
+ * table is full and n is not in it. */
+static int slot(const biref_lag_cache *lc, const int n[4])
+{
+    unsigned h = (unsigned)(n[0] * 73856093) ^ (unsigned)(n[1] * 19349663) ^ (unsigned)(n[2] * 83492791) ^
+                 (unsigned)(n[3] * 2654435761u);
+    for (int probe = 0; probe < BIREF_LAG_CACHE; probe++) {
+        const int i = (int)((h + (unsigned)probe) % BIREF_LAG_CACHE);
+        if (!lc->used[i]) return i;
+        if (lc->n[i][0] == n[0] && lc->n[i][1] == n[1] && lc->n[i][2] == n[2] && lc->n[i][3] == n[3]) return i;
+    }
+    return -1;
+}
+
+static int cached(const biref_lag_cache *lc, const int n[4], double c[3], double s[3])
+{
+    const int i = lc ? slot(lc, n) : -1;
+    if (i < 0 || !lc->used[i]) return 0;
+    for (int j = 0; j < 3; j++) c[j] = lc->c[i][j], s[j] = lc->s[i][j];
+    return 1;
+}
+
+static void remember(biref_lag_cache *lc, const int n[4], const double c[3], const double s[3])
+{
+    /* Leg counts beyond a signed char (orders past 127) are not cached. */
+    for (int l = 0; l < 4; l++)
+        if (n[l] < -127 || n[l] > 127) return;
+    const int i = lc && lc->count < BIREF_LAG_CACHE / 2 ? slot(lc, n) : -1;
+    if (i < 0 || lc->used[i]) return;
+    lc->used[i] = 1;
+    lc->count++;
+    for (int l = 0; l < 4; l++) lc->n[i][l] = (signed char)n[l];
+    for (int j = 0; j < 3; j++) lc->c[i][j] = c[j], lc->s[i][j] = s[j];
+}
+
+void biref_lag_integrals(const biref_spectral *sp, biref_leg_dispersion *ld, double opd, const int n[4],
+                         double c[3], double s[3], int *level_out, double *residual_out)
+{
+    if (level_out) *level_out = -1;
+    if (residual_out) *residual_out = 0.0;
+    if (ld->flat) {
+        biref_spectral_phase_integrals(sp, opd, c, s);
+        return;
+    }
+    if (!level_out && !residual_out && cached(ld->cache, n, c, s)) return;
+    const double *k = biref_subband_points(ld->sb);
+    double Phi[BIREF_SUBBAND_POINTS], G[BIREF_SUBBAND_POINTS];
+    /* Level 0 needs the ends and the middle; the finer levels every point. */
+    const int last = BIREF_SUBBAND_POINTS - 1;
+    lag_at(ld, n, 0, Phi, G);
+    lag_at(ld, n, last / 2, Phi, G);
+    lag_at(ld, n, last, Phi, G);
+    int level = 0;
+    double res = level_residual(Phi, G, k, 0);
+    int inside = res > BIREF_SUBBAND_PHASE_TOL && fabs(G[last / 2]) <= sp->d_max;
+    for (int p = 1; inside && p < last; p++) {
+        if (p != last / 2) lag_at(ld, n, p, Phi, G);
+        inside = fabs(G[p]) <= sp->d_max;
+    }
+    if (inside)
+        while (res > BIREF_SUBBAND_PHASE_TOL && level < BIREF_SUBBAND_LEVELS) res = level_residual(Phi, G, k, ++level);
+    if (level == 0) {
+        /* The band's own table, which also covers the lags beyond the sub-band tables. */
+        const int mid = (BIREF_SUBBAND_POINTS - 1) / 2;
+        double c0[3], s0[3];
+        biref_spectral_phase_integrals(sp, G[mid], c0, s0);
+        const double complex rot = cycles_exp((Phi[mid] - k[mid] * G[mid]) / (2.0 * M_PI));
+        const double cp = creal(rot), sn = cimag(rot);
+        for (int j = 0; j < 3; j++) {
+            c[j] = cp * c0[j] - sn * s0[j];
+            s[j] = sn * c0[j] + cp * s0[j];
+        }
+    } else
+        subband_sum(ld->sb, Phi, G, k, level, c, s);
+    remember(ld->cache, n, c, s);
+    if (level_out) *level_out = level;
+    if (residual_out) *residual_out = res;
+}

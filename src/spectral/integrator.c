@@ -11,6 +11,7 @@
 #include "spectral/analytic_terms.h"
 #include "spectral/expansion_packet.h"
 #include "spectral/integrator_internal.h"
+#include "spectral/numeric_lanes.h"
 #include "spectral/phase_prefilter.h"
 #include "spectral/spectral_internal.h"
 #include "spectral/stack_internal.h"
@@ -101,13 +102,7 @@ static biref_status side_expansion(const biref_integrator *it, const biref_slab_
 static biref_status stack_closed_form(const biref_integrator *it, const biref_stack_state *st, int which,
                                       const biref_light *l, double xyz[3])
 {
-    biref_stack_spectrum_opts o;
-    biref_stack_spectrum_opts_default(&o);
-    biref_spectrum out;
-    double m[2][3];
-    biref_status s = biref_stack_spectrum(it->sp, st, &o, l, &out, m[0], m[1], NULL, NULL, 0);
-    memcpy(xyz, m[which == BIREF_SIDE_REFLECTION], sizeof m[0]);
-    return s;
+    return biref_stack_light_face(it->sp, st, l, which, xyz);
 }
 
 /* A stack by the numeric methods: the integrator's plan, exact Jones matrices per sample. */
@@ -270,6 +265,12 @@ biref_status biref_integrate_batch(const biref_integrator *it, const biref_slab_
 static biref_status scalar_hit(const biref_integrator *it, const biref_slab_state *st, const biref_opl_footprint *fp,
                                const biref_light *light, double T[3], double R[3])
 {
+    if (it->plan && !biref_light_is_world_fixed(light)) {
+        /* Numeric methods: both sides in one pass, sharing the phases and the round trip. */
+        biref_numeric_hit(it->plan, st, (const double complex(*)[2])light->C,
+                          light->has_analyzer ? (const double complex(*)[2])light->P : NULL, T, R);
+        return finite3(T) && finite3(R) ? BIREF_OK : BIREF_ERR_ILLCOND;
+    }
     biref_integration res;
     biref_status s = biref_integrate_footprint(it, st, fp, BIREF_SIDE_TRANSMISSION, light, &res);
     if (s != BIREF_OK) return s;
@@ -295,6 +296,12 @@ void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_
                                  const biref_opl_footprint *fp, size_t n, const biref_light *light, double (*T)[3],
                                  double (*R)[3], unsigned char *scalar)
 {
+    if (it->plan && !biref_light_is_world_fixed(light)) { /* numeric methods (no footprints) */
+        biref_numeric_packet_hits(it->plan, (const double complex(*)[2])light->C,
+                                  light->has_analyzer ? (const double complex(*)[2])light->P : NULL, hits, n, T, R,
+                                  scalar);
+        return;
+    }
     if (it->hits && light->sp_model && (!fp || one_prefilter(fp, n)))
         it->hits(it->sp, light->w_in, light->mask, hits, n, T, R, scalar, fp, NULL);
     else if (it->xhits && light->sp_model && (!fp || one_prefilter(fp, n))) {

@@ -115,7 +115,8 @@ biref_status biref_stack_expansion_dispersive(const biref_spectral *sp, const bi
         if (g.reason) return fall_back(sp, st, o, light, out, mixed, info, g.reason);
         biref_spectrum x;
         double m[2][3], err = 0.0;
-        s = biref_stack_face_sums(sp, &g, light, j, biref_spectral_band_k_width(sp, j), &x, m, &err);
+        const biref_stack_sums band = {BIREF_SIDE_BOTH, 1, j, biref_spectral_band_k_width(sp, j)};
+        s = biref_stack_face_sums(sp, &g, light, &band, &x, m, &err);
         for (int f = 0; f < 2; f++) info->groups[f] = g.n[f] > info->groups[f] ? g.n[f] : info->groups[f];
         info->legs = g.legs > info->legs ? g.legs : info->legs;
         info->bound = fmax(info->bound, g.bound);

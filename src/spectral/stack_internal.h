@@ -51,13 +51,27 @@ typedef struct {
 biref_status biref_stack_path_groups(const biref_stack_state *st, const double (*curv)[4], double tolerance,
                                      int max_groups, biref_stack_groups *out);
 
-/* The pair sums of both faces' groups (stack_spectrum.c): out's pairs and the light's XYZ per
- * face (light may be NULL). band < 0: all three bands; else only band j = band, and *err
- * receives the estimated error of the linearised phases in that band (pairs' curvature
- * differences over a band of width dk, each weighted by its amplitudes and band integral).
- * BIREF_ERR_NOMEM. */
+/* What the pair sums compute: the faces (BIREF_SIDE_TRANSMISSION | BIREF_SIDE_REFLECTION), the
+ * four s/p pairs (pairs != 0) or only the light's intensity, all three bands (band < 0) or band j
+ * = band alone with the estimate of its linearisation error (dk: the band's width in k). */
+typedef struct {
+    int faces, pairs, band;
+    double dk;
+} biref_stack_sums;
+
+/* The pair sums of the groups (stack_spectrum.c): out's pairs and the light's XYZ per face
+ * (light may be NULL), as `what` asks (the rest left 0). With a band, *err receives the
+ * estimated error of the linearised phases in it (pairs' curvature differences over the band's
+ * width, each weighted by its amplitudes and band integral). BIREF_ERR_NOMEM. */
 biref_status biref_stack_face_sums(const biref_spectral *sp, const biref_stack_groups *g, const biref_light *light,
-                                   int band, double dk, biref_spectrum *out, double mixed[2][3], double *err);
+                                   const biref_stack_sums *what, biref_spectrum *out, double mixed[2][3], double *err);
+
+/* One face's detected XYZ of a prepared stack under a light by the default options of
+ * biref_stack_spectrum (expansion, its fallbacks), computing that face alone and no s/p pairs:
+ * the shader's stack hits. which: BIREF_SIDE_TRANSMISSION or BIREF_SIDE_REFLECTION. The codes of
+ * biref_stack_spectrum. */
+biref_status biref_stack_light_face(const biref_spectral *sp, const biref_stack_state *st, const biref_light *light,
+                                    int which, double xyz[3]);
 
 /* The expansion of a stack with dispersive layers, per band linearised around the band's
  * centroid (stack_dispersive.c); its fallback to adaptive numeric integration is reported in

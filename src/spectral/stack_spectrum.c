@@ -41,6 +41,7 @@ static double group_amplitude(const biref_stack_group *g)
 /* Which bands a sum covers, and for a dispersive band the estimate of its linearisation error. */
 typedef struct {
     int lo, hi;  /* bands lo .. hi - 1 */
+    int pairs;   /* the four s/p pairs too (else only the light's intensity) */
     double dk;   /* dispersive: the band's width in k (1/nm) */
     double *err; /* dispersive: the error estimate accumulates here; NULL otherwise */
 } band_range;
@@ -71,7 +72,7 @@ static void pair_sums(const biref_spectral *sp, const biref_stack_group *g, int 
     memset(X, 0, sizeof(double[2][2][3]));
     memset(mixed, 0, sizeof(double[3]));
     for (int a = 0; a < n; a++) {
-        for (int i = 0; i < 2; i++)
+        for (int i = 0; i < 2 * r->pairs; i++)
             for (int o = 0; o < 2; o++) {
                 double p = creal(g[a].M[i][o] * conj(g[a].M[i][o]));
                 for (int b = r->lo; b < r->hi; b++) X[i][o][b] += p;
@@ -87,7 +88,7 @@ static void pair_sums(const biref_spectral *sp, const biref_stack_group *g, int 
             biref_spectral_phase_integrals(sp, delta, C, S);
             if (r->err) *r->err += pair_curvature_error(sp, &g[a], &g[h], delta, r);
             /* 2 Re(c S(e^{-ik delta})) with S(e^{-ik delta}) = C - i S. */
-            for (int i = 0; i < 2; i++)
+            for (int i = 0; i < 2 * r->pairs; i++)
                 for (int o = 0; o < 2; o++) {
                     double complex c = g[a].M[i][o] * conj(g[h].M[i][o]);
                     for (int b = r->lo; b < r->hi; b++) X[i][o][b] += 2 * (creal(c) * C[b] + cimag(c) * S[b]);
@@ -101,17 +102,21 @@ static void pair_sums(const biref_spectral *sp, const biref_stack_group *g, int 
 }
 
 biref_status biref_stack_face_sums(const biref_spectral *sp, const biref_stack_groups *g, const biref_light *light,
-                                   int band, double dk, biref_spectrum *out, double mixed[2][3], double *err)
+                                   const biref_stack_sums *what, biref_spectrum *out, double mixed[2][3], double *err)
 {
+    const int band = what->band;
     double complex(*N)[2][2] = NULL;
     const int most = g->n[0] > g->n[1] ? g->n[0] : g->n[1];
     if (light && most > 0) {
         N = malloc((size_t)most * sizeof *N);
         if (!N) return BIREF_ERR_NOMEM;
     }
-    band_range r = {band < 0 ? 0 : band, band < 0 ? 3 : band + 1, dk, band < 0 ? NULL : err};
+    band_range r = {band < 0 ? 0 : band, band < 0 ? 3 : band + 1, what->pairs != 0, what->dk, band < 0 ? NULL : err};
     if (r.err) *r.err = 0.0;
+    memset(out, 0, sizeof *out);
+    memset(mixed, 0, sizeof(double[2][3]));
     for (int f = 0; f < 2; f++) {
+        if (!(what->faces & (f ? BIREF_SIDE_REFLECTION : BIREF_SIDE_TRANSMISSION))) continue;
         if (light)
             for (int k = 0; k < g->n[f]; k++) analyzed(light, g->g[f][k].M, N[k]);
         pair_sums(sp, g->g[f], g->n[f], light, (const double complex(*)[2][2])N, &r, f ? out->R : out->T, mixed[f]);
@@ -177,7 +182,8 @@ static biref_status expansion(const biref_spectral *sp, const biref_stack_state 
     if (!g.reason) {
         info->groups[0] = g.n[0];
         info->groups[1] = g.n[1];
-        s = biref_stack_face_sums(sp, &g, light, -1, 0.0, out, mixed, NULL);
+        const biref_stack_sums all = {BIREF_SIDE_BOTH, 1, -1, 0.0};
+        s = biref_stack_face_sums(sp, &g, light, &all, out, mixed, NULL);
         biref_stack_groups_free(&g);
         return s == BIREF_OK ? s : biref_fail_status(s, msg, msg_len, "out of memory");
     }
@@ -228,5 +234,34 @@ biref_status biref_stack_spectrum(const biref_spectral *sp, const biref_stack_st
             for (int b = 0; b < 3; b++)
                 if (!isfinite(out->T[i][k][b]) || !isfinite(out->R[i][k][b]))
                     return biref_fail_status(BIREF_ERR_ILLCOND, msg, msg_len, "numerical failure (non-finite result)");
+    return BIREF_OK;
+}
+
+biref_status biref_stack_light_face(const biref_spectral *sp, const biref_stack_state *st, const biref_light *light,
+                                    int which, double xyz[3])
+{
+    biref_stack_spectrum_opts o;
+    biref_stack_spectrum_opts_default(&o);
+    biref_spectrum out;
+    double mixed[2][3];
+    const int face = which == BIREF_SIDE_REFLECTION;
+    biref_stack_groups g = {0};
+    biref_status s = st->dispersive ? BIREF_OK : biref_stack_path_groups(st, NULL, o.tolerance, o.max_groups, &g);
+    if (s != BIREF_OK) return s;
+    if (st->dispersive || g.reason) {
+        /* The per-band expansion and the fallbacks: the whole integration, one face kept. */
+        s = biref_stack_spectrum(sp, st, &o, light, &out, mixed[0], mixed[1], NULL, NULL, 0);
+    } else {
+        /* The pairs of the one face the hit sees, and the light's intensity alone (the same sums
+         * in the same order as biref_stack_spectrum's). */
+        const biref_stack_sums one = {which, 0, -1, 0.0};
+        s = biref_stack_face_sums(sp, &g, light, &one, &out, mixed, NULL);
+        biref_stack_groups_free(&g);
+    }
+    if (s != BIREF_OK) return s;
+    for (int b = 0; b < 3; b++) {
+        xyz[b] = mixed[face][b];
+        if (!isfinite(xyz[b])) return BIREF_ERR_ILLCOND;
+    }
     return BIREF_OK;
 }

@@ -1,5 +1,6 @@
 /* biref render: a scene file to an sRGB PNG (and optionally a linear PFM). */
 #include <math.h>
+#include <omp.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -133,6 +134,7 @@ static int parse(int argc, char **argv, render_args *a)
         opt->method != BIREF_METHOD_EXPANSION)
         return cli_error(CMD, "--order/--tolerance only apply to --method expansion"), -1;
     opt->threads = (int)a->threads;
+    if (a->threads > 0) omp_set_num_threads((int)a->threads); /* also the sRGB encoding's loop */
     if (a->gl && ((cli_opts_given(&CLI_RENDER, &p, "method") && opt->method != BIREF_METHOD_ANALYTIC) || a->threads))
         return cli_error(CMD, "--backend gl runs the analytic method only (no --method other than analytic, no --threads)"),
                -1;

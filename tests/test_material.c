@@ -396,7 +396,14 @@ static void test_integrator_takes_materials(void)
     biref_spectrum x, y;
     CHECK(biref_integrate_spectrum(nu, &st, &x) == BIREF_OK);
     CHECK(biref_integrate_material_spectrum(nu, m, &s, 0.6, &y) == BIREF_OK);
-    CHECK(memcmp(&x, &y, sizeof x) == 0);
+    /* The prepared slab goes through the lanes (numeric_lanes.c), the material through the
+     * per-wavelength path: equal to ~1e-15, not bitwise. */
+    for (int i = 0; i < 2; i++)
+        for (int o = 0; o < 2; o++)
+            for (int j = 0; j < 3; j++) {
+                CHECK_NEAR(x.T[i][o][j], y.T[i][o][j], 1e-12);
+                CHECK_NEAR(x.R[i][o][j], y.R[i][o][j], 1e-12);
+            }
     /* The closed-form methods: constant indices give no group correction and no phase offsets,
      * the same numbers as on the prepared slab. */
     CHECK(biref_integrate_spectrum(an, &st, &x) == BIREF_OK);

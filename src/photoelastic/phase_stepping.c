@@ -29,6 +29,7 @@
 
 #include "biref/photoelastic.h"
 #include "optics/validate.h"
+#include "photoelastic/pixel_heap.h"
 
 /* Largest |fringe order| of the reference point (docs/PHOTOELASTICITY.md, "Phase stepping"). */
 #define MAX_REF_ORDER 1e5
@@ -76,45 +77,6 @@ int biref_pe_phase_steps(int n, biref_pe_step out[6])
 /* Demodulation                                                              */
 /* ------------------------------------------------------------------------ */
 
-typedef struct {
-    float q;
-    int i;
-} heap_item;
-
-typedef struct {
-    heap_item *a;
-    size_t n;
-} heap;
-
-static void heap_push(heap *h, float q, int i)
-{
-    size_t k = h->n++;
-    while (k > 0) {
-        size_t p = (k - 1) / 2;
-        if (h->a[p].q >= q) break;
-        h->a[k] = h->a[p];
-        k = p;
-    }
-    h->a[k].q = q;
-    h->a[k].i = i;
-}
-
-static heap_item heap_pop(heap *h)
-{
-    heap_item top = h->a[0], last = h->a[--h->n];
-    size_t k = 0;
-    for (;;) {
-        size_t c = 2 * k + 1;
-        if (c >= h->n) break;
-        if (c + 1 < h->n && h->a[c + 1].q > h->a[c].q) c++;
-        if (h->a[c].q <= last.q) break;
-        h->a[k] = h->a[c];
-        k = c;
-    }
-    if (h->n) h->a[k] = last;
-    return top;
-}
-
 static double wrap_pi(double x)
 {
     return x - 2.0 * M_PI * nearbyint(x / (2.0 * M_PI));
@@ -137,7 +99,7 @@ typedef struct {
     double *unw;           /* unwrapped delta of the chosen branch */
     float *ref2phi;        /* isoclinic passed on to neighbours */
     signed char *branch;   /* +1: (2phi', delta'), -1: (2phi' + pi, -delta'); 0: not reached */
-    heap h;
+    pixel_heap h;
 } demod_work;
 
 static void demod_work_free(demod_work *w)
@@ -171,7 +133,7 @@ static int demod_work_alloc(demod_work *w, int W, int H)
     w->unw = malloc(np * sizeof *w->unw);
     w->ref2phi = malloc(np * sizeof *w->ref2phi);
     w->branch = malloc(np);
-    w->h.a = malloc(np * sizeof(heap_item));
+    w->h.a = malloc(np * sizeof(pixel_heap_item));
     w->h.n = 0;
     return w->two_phi && w->dl && w->qual && w->ia && w->ib && w->vec && w->smooth && w->unw && w->ref2phi &&
            w->branch && w->h.a;
@@ -254,22 +216,22 @@ static void flood_order(demod_work *w)
 static size_t region_seed(demod_work *w, size_t rp)
 {
     const int W = w->W, H = w->H;
-    heap *h = &w->h;
+    pixel_heap *h = &w->h;
     size_t best = rp;
-    heap_push(h, 0, (int)rp);
+    pixel_heap_push(h, 0, (int)rp);
     w->branch[rp] = 2; /* visited */
     while (h->n) {
-        heap_item it = heap_pop(h);
-        const int x = it.i % W, y = it.i / W;
-        const int okb = w->qual[best] >= 0.5f, oki = w->qual[it.i] >= 0.5f;
-        if (oki > okb || (oki == okb && w->smooth[it.i] > w->smooth[best])) best = (size_t)it.i;
+        pixel_heap_item it = pixel_heap_pop(h);
+        const int x = it.px % W, y = it.px / W;
+        const int okb = w->qual[best] >= 0.5f, oki = w->qual[it.px] >= 0.5f;
+        if (oki > okb || (oki == okb && w->smooth[it.px] > w->smooth[best])) best = (size_t)it.px;
         const int nb[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
         for (int k = 0; k < 4; k++) {
             if (nb[k][0] < 0 || nb[k][0] >= W || nb[k][1] < 0 || nb[k][1] >= H) continue;
             const size_t q = (size_t)nb[k][1] * W + nb[k][0];
             if (w->branch[q] || w->qual[q] < 0) continue;
             w->branch[q] = 2;
-            heap_push(h, 0, (int)q);
+            pixel_heap_push(h, 0, (int)q);
         }
     }
     for (size_t p = 0; p < w->np; p++) w->branch[p] = 0;
@@ -281,18 +243,18 @@ static size_t region_seed(demod_work *w, size_t rp)
 static void unwrap_from(demod_work *w, size_t best)
 {
     const int W = w->W, H = w->H;
-    heap *h = &w->h;
+    pixel_heap *h = &w->h;
     const float *two_phi = w->two_phi, *dl = w->dl, *qual = w->qual;
     float *ref2phi = w->ref2phi;
     double *unw = w->unw;
     w->branch[best] = 1;
     unw[best] = dl[best];
     ref2phi[best] = two_phi[best];
-    heap_push(h, w->smooth[best], (int)best);
+    pixel_heap_push(h, w->smooth[best], (int)best);
     while (h->n) {
-        heap_item it = heap_pop(h);
-        const size_t p = (size_t)it.i;
-        const int x = it.i % W, y = it.i / W;
+        pixel_heap_item it = pixel_heap_pop(h);
+        const size_t p = (size_t)it.px;
+        const int x = it.px % W, y = it.px / W;
         const int nb[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
         for (int k = 0; k < 4; k++) {
             if (nb[k][0] < 0 || nb[k][0] >= W || nb[k][1] < 0 || nb[k][1] >= H) continue;
@@ -315,7 +277,7 @@ static void unwrap_from(demod_work *w, size_t best)
             const double d = b * dl[q];
             unw[q] = d + 2.0 * M_PI * nearbyint((unw[p] - d) / (2.0 * M_PI));
             w->branch[q] = (signed char)b;
-            heap_push(h, w->smooth[q], (int)q);
+            pixel_heap_push(h, w->smooth[q], (int)q);
         }
     }
 }

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "optics/validate.h"
+#include "photoelastic/pixel_heap.h"
 #include "biref/color.h"
 #include "biref/photoelastic.h"
 
@@ -82,42 +83,6 @@ biref_status biref_pe_tfp_calibrate(const biref_pe_setup *s, const biref_spectra
 /* Demodulation                                                              */
 /* ------------------------------------------------------------------------ */
 
-typedef struct {
-    float key;
-    int px;
-} heap_item;
-
-typedef struct {
-    heap_item *a;
-    size_t n;
-} heap;
-
-static void heap_push(heap *h, heap_item it)
-{
-    size_t i = h->n++;
-    while (i > 0 && h->a[(i - 1) / 2].key > it.key) {
-        h->a[i] = h->a[(i - 1) / 2];
-        i = (i - 1) / 2;
-    }
-    h->a[i] = it;
-}
-
-static heap_item heap_pop(heap *h)
-{
-    heap_item top = h->a[0], last = h->a[--h->n];
-    size_t i = 0;
-    for (;;) {
-        size_t c = 2 * i + 1;
-        if (c >= h->n) break;
-        if (c + 1 < h->n && h->a[c + 1].key < h->a[c].key) c++;
-        if (h->a[c].key >= last.key) break;
-        h->a[i] = h->a[c];
-        i = c;
-    }
-    if (h->n) h->a[i] = last;
-    return top;
-}
-
 /* The table entry in [k0, k1] nearest in colour, refined between table entries by a parabola
  * through the distances; *res the RMS colour difference there. */
 static double match(const float *c, size_t n, const double *orders, const double *tab, size_t k0, size_t k1, double *res)
@@ -164,7 +129,7 @@ biref_status biref_pe_tfp_demodulate(const float *rgb, int W, int H, size_t n, c
     if (!(o->window > 0 && o->max_residual > 0)) return biref_fail(msg, msg_len, "window and residual limit must be positive");
     const size_t npx = (size_t)W * H;
     unsigned char *done = calloc(npx, 1);
-    heap h = {malloc(npx * 4 * sizeof *h.a + sizeof *h.a), 0};
+    pixel_heap h = {malloc(npx * 4 * sizeof *h.a + sizeof *h.a), 0};
     if (!done || !h.a) {
         free(done);
         free(h.a);
@@ -190,7 +155,7 @@ biref_status biref_pe_tfp_demodulate(const float *rgb, int W, int H, size_t n, c
     order_out[s0] = (float)N0;
     if (residual_out) residual_out[s0] = (float)res;
     done[s0] = 1;
-    heap_push(&h, (heap_item){(float)res, (int)s0});
+    pixel_heap_push(&h, -(float)res, (int)s0); /* lowest residual first */
     /* Grow: each pixel's neighbours are matched within the window around its order; the best-matched
      * pixel is expanded first, so that noisy or ambiguous pixels never hand their order on before
      * the reliable ones around them have. */
@@ -198,7 +163,7 @@ biref_status biref_pe_tfp_demodulate(const float *rgb, int W, int H, size_t n, c
     size_t grown = 0;
     while (h.n) {
         grown++;
-        const heap_item it = heap_pop(&h);
+        const pixel_heap_item it = pixel_heap_pop(&h);
         const int x = it.px % W, y = it.px / W;
         const double N = order_out[it.px];
         for (int d = 0; d < 4; d++) {
@@ -212,7 +177,7 @@ biref_status biref_pe_tfp_demodulate(const float *rgb, int W, int H, size_t n, c
             if (residual_out) residual_out[q] = (float)res;
             if (res > o->max_residual) continue; /* not this material's colours: left NaN, not passed on */
             order_out[q] = (float)Nq;
-            heap_push(&h, (heap_item){(float)res, (int)q});
+            pixel_heap_push(&h, -(float)res, (int)q);
         }
     }
     free(done);

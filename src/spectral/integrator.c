@@ -11,6 +11,7 @@
 #include "spectral/analytic_terms.h"
 #include "spectral/expansion_packet.h"
 #include "spectral/integrator_internal.h"
+#include "spectral/numeric_lanes.h"
 #include "spectral/phase_prefilter.h"
 #include "spectral/spectral_internal.h"
 #include "spectral/stack_internal.h"
@@ -264,6 +265,12 @@ biref_status biref_integrate_batch(const biref_integrator *it, const biref_slab_
 static biref_status scalar_hit(const biref_integrator *it, const biref_slab_state *st, const biref_opl_footprint *fp,
                                const biref_light *light, double T[3], double R[3])
 {
+    if (it->plan && !biref_light_is_world_fixed(light)) {
+        /* Numeric methods: both sides in one pass, sharing the phases and the round trip. */
+        biref_numeric_hit(it->plan, st, (const double complex(*)[2])light->C,
+                          light->has_analyzer ? (const double complex(*)[2])light->P : NULL, T, R);
+        return finite3(T) && finite3(R) ? BIREF_OK : BIREF_ERR_ILLCOND;
+    }
     biref_integration res;
     biref_status s = biref_integrate_footprint(it, st, fp, BIREF_SIDE_TRANSMISSION, light, &res);
     if (s != BIREF_OK) return s;
@@ -289,12 +296,17 @@ void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_
                                  const biref_opl_footprint *fp, size_t n, const biref_light *light, double (*T)[3],
                                  double (*R)[3], unsigned char *scalar)
 {
+    if (it->plan && !biref_light_is_world_fixed(light)) { /* numeric methods (no footprints) */
+        biref_numeric_packet_hits(it->plan, (const double complex(*)[2])light->C,
+                                  light->has_analyzer ? (const double complex(*)[2])light->P : NULL, hits, n, T, R,
+                                  scalar);
+        return;
+    }
     if (it->hits && light->sp_model && (!fp || one_prefilter(fp, n)))
         it->hits(it->sp, light->w_in, light->mask, hits, n, T, R, scalar, fp, NULL);
     else if (it->xhits && light->sp_model && (!fp || one_prefilter(fp, n))) {
-        /* The scalar expansion detects through P = diag(mask) as a Jones matrix: weights mask^2. */
-        const double m2[2] = {light->mask[0] * light->mask[0], light->mask[1] * light->mask[1]};
-        it->xhits(it->sp, &it->xopts, light->w_in, m2, hits, n, T, R, scalar, fp, NULL);
+        /* Power weights, as P = diag(sqrt(mask)) gives the scalar expansion. */
+        it->xhits(it->sp, &it->xopts, light->w_in, light->mask, hits, n, T, R, scalar, fp, NULL);
     } else
         memset(scalar, 1, n);
 }

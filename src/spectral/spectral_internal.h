@@ -102,7 +102,20 @@ struct biref_numeric_plan {
     double *lambda;
     double *k;           /* 2 pi / lambda */
     double (*weight)[3]; /* sum over samples = 1 per band */
+    /* The lanes path (numeric_lanes.h): k padded to a multiple of BIREF_NUMERIC_LANES_PAD with
+     * its last value, the weights per band padded with 0; the instruction set (a biref_simd_isa,
+     * BIREF_SIMD_SCALAR: the per-wavelength blocks of numeric_jones.c), the largest k. */
+    int padded;
+    double *wband[3];
+    int isa;
+    double k_max;
 };
+
+/* One hit by numeric integration: transmission of st and reflection of its flip
+ * (biref_slab_state_flip) under the coherency C and analyzer P (NULL: none), band-normalised
+ * XYZ; in one pass over the wavelengths where the lanes take the state (numeric_lanes.h). */
+void biref_numeric_hit(const biref_numeric_plan *plan, const biref_slab_state *st, const double complex C[2][2],
+                       const double complex P[2][2], double T[3], double R[3]);
 
 /* The two terms of the analytic approximation, S(|J|^2) ~ E + 2 H (eqs. 19, 25), for
  * which = BIREF_TRANSMISSION or BIREF_REFLECTION, indexed [in][out][band]. In the coherent

@@ -6,8 +6,6 @@
 set -u
 . "$(dirname "$0")/lib.sh"
 
-# json_num KEY FILE: a number from cJSON's formatted output.
-json_num() { sed -n "s/^[[:space:]]*\"$1\":[[:space:]]*\\([-0-9.eE+]*\\),*\$/\\1/p" "$2" | head -1; }
 
 scene=examples/fig9c_analyzer45.json
 size=(--width 320 --height 180 --quiet)

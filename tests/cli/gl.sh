@@ -5,8 +5,6 @@
 set -u
 . "$(dirname "$0")/lib.sh"
 
-# json_num KEY FILE: a number from cJSON's formatted output.
-json_num() { sed -n "s/^[[:space:]]*\"$1\":[[:space:]]*\\([-0-9.eE+]*\\),*\$/\\1/p" "$2" | head -1; }
 
 expect_error "unknown backend" render examples/fig9a.json -o "$tmpdir/x.png" --backend vulkan
 expect_error "gl with a numeric method" render examples/fig9a.json -o "$tmpdir/x.png" --backend gl --method numeric

@@ -36,6 +36,9 @@ expect_grep() {
   fi
 }
 
+# json_num KEY FILE: the first number under KEY in cJSON's formatted (one key per line) output.
+json_num() { sed -n "s/^[[:space:]]*\"$1\":[[:space:]]*\\([-0-9.eE+]*\\),*\$/\\1/p" "$2" | head -1; }
+
 finish() {
   if [ "$fails" -ne 0 ]; then
     echo "$fails failure(s)"

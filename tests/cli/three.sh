@@ -11,8 +11,6 @@ set -u
 W=320 H=180
 pkg=web/three
 
-json_num() { sed -n "s/^[[:space:]]*\"$1\":[[:space:]]*\\([-0-9.eE+]*\\),*\$/\\1/p" "$2" | head -1; }
-
 if [ ! -f $pkg/node_modules/three/build/three.module.js ]; then
   echo "FAIL: $pkg/node_modules/three is missing: run scripts/install-deps.sh (npm ci in $pkg)"
   exit 1

@@ -9,7 +9,6 @@ set -u
 . "$(dirname "$0")/lib.sh"
 W=320 H=180
 
-json_num() { sed -n "s/^[[:space:]]*\"$1\":[[:space:]]*\\([-0-9.eE+]*\\),*\$/\\1/p" "$2" | head -1; }
 # check_close NAME GOT.png REF.png: within the thresholds.
 check_close() {
   expect_ok "$1 diff" diff "$2" "$3" --json

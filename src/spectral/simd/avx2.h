@@ -29,4 +29,14 @@ static inline vd v_sqrt(vd x)
 #endif
 }
 
+/* a b + c with one rounding. */
+static inline vd v_fma(vd a, vd b, vd c)
+{
+#if defined(__AVX2__) && defined(__FMA__)
+    return (vd)_mm256_fmadd_pd((__m256d)a, (__m256d)b, (__m256d)c);
+#else
+    return v_fma_generic(a, b, c);
+#endif
+}
+
 #endif

@@ -29,4 +29,14 @@ static inline vd v_sqrt(vd x)
 #endif
 }
 
+/* a b + c with one rounding. */
+static inline vd v_fma(vd a, vd b, vd c)
+{
+#if defined(__AVX512F__) && defined(__FMA__)
+    return (vd)_mm512_fmadd_pd((__m512d)a, (__m512d)b, (__m512d)c);
+#else
+    return v_fma_generic(a, b, c);
+#endif
+}
+
 #endif

@@ -22,4 +22,6 @@ static inline vd v_sqrt(vd x)
 #endif
 }
 
+static inline vd v_fma(vd a, vd b, vd c) { return v_fma_generic(a, b, c); }
+
 #endif

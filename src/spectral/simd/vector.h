@@ -48,6 +48,13 @@ static inline vd v_sqrt_generic(vd x)
     return x;
 }
 
+/* a b + c with one rounding per lane (libm's fma: slow where the CPU has no fused multiply-add). */
+static inline vd v_fma_generic(vd a, vd b, vd c)
+{
+    for (int l = 0; l < PACKET_W; l++) a[l] = fma(a[l], b[l], c[l]);
+    return a;
+}
+
 /* r[k][l] = r[l][k]: PACKET_W vectors of PACKET_W lanes transposed in log2(PACKET_W) rounds of
  * two-vector shuffles (pairs of blocks of 1, 2, 4 lanes interleaved). __builtin_shufflevector
  * (constant lane indices) rather than GCC's __builtin_shuffle, which clang does not have: the

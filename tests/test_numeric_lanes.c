@@ -201,6 +201,8 @@ static void packet_hits_match_scalar_path(void)
     ref->isa = BIREF_SIMD_SCALAR;
     enum { N = 203 };
     static biref_packet_hit hits[N];
+    static double cols[BIREF_PACKET_HIT_FIELDS * N];
+    const biref_packet_hits H = {cols, N};
     static double T[N][3], R[N][3];
     static unsigned char scalar[N];
     test_rng r = {SEED + 2};
@@ -223,7 +225,8 @@ static void packet_hits_match_scalar_path(void)
                 h->K = h->eta_i * sin(test_uniform(&r, 0.0, 1.55));
             }
             const double complex(*C)[2] = light ? C_gen : C_sp, (*P)[2] = light ? P_gen : P_s;
-            biref_numeric_packet_hits(plan, C, P, hits, N, T, R, scalar);
+            for (size_t k = 0; k < N; k++) biref_packet_hit_put(cols, N, k, &hits[k]);
+            biref_numeric_packet_hits(plan, C, P, &H, N, T, R, scalar);
             for (int k = 0; k < N; k++) {
                 if (scalar[k]) continue;
                 const biref_slab s = {hits[k].eta_o, hits[k].eta_e, {hits[k].axis[0], hits[k].axis[1], hits[k].axis[2]},
@@ -244,7 +247,7 @@ static void packet_hits_match_scalar_path(void)
         CHECK(worst <= 1e-11);
     }
     plan->isa = BIREF_SIMD_SCALAR;
-    biref_numeric_packet_hits(plan, C_sp, P_s, hits, N, T, R, scalar);
+    biref_numeric_packet_hits(plan, C_sp, P_s, &H, N, T, R, scalar);
     int all = 1;
     for (int k = 0; k < N; k++) all &= scalar[k];
     CHECK(all); /* BIREF_SIMD=scalar: every hit the scalar way */

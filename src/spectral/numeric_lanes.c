@@ -87,7 +87,7 @@ int biref_numeric_lanes_run(const biref_numeric_plan *plan, const biref_slab_sta
 }
 
 void biref_numeric_packet_hits(const biref_numeric_plan *plan, const double complex C[2][2],
-                               const double complex P[2][2], const biref_packet_hit *hits, size_t n, double (*T)[3],
+                               const double complex P[2][2], const biref_packet_hits *hits, size_t n, double (*T)[3],
                                double (*R)[3], unsigned char *scalar)
 {
     if (plan->isa == BIREF_SIMD_SCALAR) {

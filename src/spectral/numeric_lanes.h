@@ -74,11 +74,11 @@ void biref_numeric_lanes_sincos_avx512(const double *x, int n, double *s, double
  * kernel's v_prepare), then its wavelengths in lanes: T of the state and R of the flipped state
  * under job's light, as biref_numeric_hit gives them; scalar[k] = 1 for a hit the set-up cannot
  * take (as for the analytic kernel), whose T and R are left undefined. */
-void biref_numeric_hits_baseline(biref_numeric_lanes_job *job, const biref_packet_hit *hits, size_t n,
+void biref_numeric_hits_baseline(biref_numeric_lanes_job *job, const biref_packet_hits *hits, size_t n,
                                  double (*T)[3], double (*R)[3], unsigned char *scalar);
-void biref_numeric_hits_avx2(biref_numeric_lanes_job *job, const biref_packet_hit *hits, size_t n, double (*T)[3],
+void biref_numeric_hits_avx2(biref_numeric_lanes_job *job, const biref_packet_hits *hits, size_t n, double (*T)[3],
                              double (*R)[3], unsigned char *scalar);
-void biref_numeric_hits_avx512(biref_numeric_lanes_job *job, const biref_packet_hit *hits, size_t n,
+void biref_numeric_hits_avx512(biref_numeric_lanes_job *job, const biref_packet_hits *hits, size_t n,
                                double (*T)[3], double (*R)[3], unsigned char *scalar);
 
 struct biref_numeric_plan;
@@ -87,7 +87,7 @@ struct biref_numeric_plan;
  * under the coherency C and analyzer P (NULL: none) on the plan's instruction set; on the scalar
  * path (BIREF_SIMD=scalar) every hit is marked scalar. */
 void biref_numeric_packet_hits(const struct biref_numeric_plan *plan, const double complex C[2][2],
-                               const double complex P[2][2], const biref_packet_hit *hits, size_t n, double (*T)[3],
+                               const double complex P[2][2], const biref_packet_hits *hits, size_t n, double (*T)[3],
                                double (*R)[3], unsigned char *scalar);
 
 /* The lanes path for one state: fills job (outputs, pairs, light as set by the caller) with

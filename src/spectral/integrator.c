@@ -298,8 +298,8 @@ void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_
 {
     if (it->plan && !biref_light_is_world_fixed(light)) { /* numeric methods (no footprints) */
         biref_numeric_packet_hits(it->plan, (const double complex(*)[2])light->C,
-                                  light->has_analyzer ? (const double complex(*)[2])light->P : NULL, hits, n, T, R,
-                                  scalar);
+                                  light->has_analyzer ? (const double complex(*)[2])light->P : NULL, NULL, hits, n, T,
+                                  R, scalar);
         return;
     }
     if (it->hits && light->sp_model && (!fp || one_prefilter(fp, n)))
@@ -316,6 +316,10 @@ void biref_integrate_packet_hits_lit(const biref_integrator *it, const biref_pac
                                      const biref_opl_footprint *fp, size_t n, const biref_packet_hit_light *lights,
                                      double (*T)[3], double (*R)[3], unsigned char *scalar)
 {
+    if (it->plan) { /* numeric methods (no footprints) */
+        biref_numeric_packet_hits(it->plan, NULL, NULL, lights, hits, n, T, R, scalar);
+        return;
+    }
     if (it->hits && (!fp || one_prefilter(fp, n)))
         it->hits(it->sp, NULL, NULL, hits, n, T, R, scalar, fp, lights);
     else if (it->xhits && (!fp || one_prefilter(fp, n)))

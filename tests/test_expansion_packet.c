@@ -100,10 +100,9 @@ static void kernels_vs_scalar(const biref_expansion_opts *xo, int prefilter, uns
     }
     for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
         if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
-        /* The kernel's weights are the detected fractions: the scalar expansion's analyzer
-         * P = diag(mask) passes mask^2 of each output's intensity. */
-        const double m2[2] = {mask[0] * mask[0], mask[1] * mask[1]};
-        biref_simd_expansion_kernel((biref_simd_isa)isa)(sp, xo, w_in, m2, hits, n, T, R, scalar, pf ? fps : NULL, NULL);
+        /* The kernel's weights are the detected power fractions, the mask itself (the scalar
+         * expansion's analyzer P = diag(sqrt(mask)) passes mask of each output's intensity). */
+        biref_simd_expansion_kernel((biref_simd_isa)isa)(sp, xo, w_in, mask, hits, n, T, R, scalar, pf ? fps : NULL, NULL);
         double worst = 0.0;
         int taken = 0, n_thick = 0, thick_taken = 0, n_thin = 0, thin_taken = 0;
         for (size_t k = 0; k < n; k++) {

@@ -279,6 +279,33 @@ static void photoelastic_shading_through_integrator_equals_direct_paths(void)
     biref_integrator_destroy(ex);
 }
 
+/* The s/p analyzer's mask is a power transmittance: the detected colour is linear in it, so a
+ * mask (a, b) gives a times the s-only colour plus b times the p-only colour, for every method
+ * and both sides. (A mask used as a Jones amplitude would weight by a^2 and b^2.) */
+static void fractional_mask_weights_power_for_every_method(void)
+{
+    biref_slab_state st;
+    CHECK(biref_slab_prepare(&SLAB, 0.6, &st) == BIREF_OK);
+    const double w[2] = {0.3, 0.7}, m[2] = {0.25, 0.6}, s_only[2] = {1, 0}, p_only[2] = {0, 1};
+    const biref_method methods[3] = {BIREF_METHOD_ANALYTIC, BIREF_METHOD_NUMERIC, BIREF_METHOD_EXPANSION};
+    for (int k = 0; k < 3; k++) {
+        biref_integrator *it = make(methods[k], 64);
+        biref_light l;
+        biref_integration r, rs, rp;
+        CHECK(biref_light_sp(w, m, &l) == BIREF_OK);
+        CHECK(biref_integrate(it, &st, BIREF_SIDE_BOTH, &l, &r) == BIREF_OK);
+        CHECK(biref_light_sp(w, s_only, &l) == BIREF_OK);
+        CHECK(biref_integrate(it, &st, BIREF_SIDE_BOTH, &l, &rs) == BIREF_OK);
+        CHECK(biref_light_sp(w, p_only, &l) == BIREF_OK);
+        CHECK(biref_integrate(it, &st, BIREF_SIDE_BOTH, &l, &rp) == BIREF_OK);
+        for (int j = 0; j < 3; j++) {
+            CHECK_NEAR(r.T[j], m[0] * rs.T[j] + m[1] * rp.T[j], 1e-12);
+            CHECK_NEAR(r.R[j], m[0] * rs.R[j] + m[1] * rp.R[j], 1e-12);
+        }
+        biref_integrator_destroy(it);
+    }
+}
+
 int main(int argc, char **argv)
 {
     biref_spectral_config cfg;
@@ -291,6 +318,7 @@ int main(int argc, char **argv)
         {"integrate_equals_entry_points", integrate_equals_entry_points},
         {"integrate_refuses_unsupported_light_and_bad_sides", integrate_refuses_unsupported_light_and_bad_sides},
         {"energy_is_conserved_and_isotropic_slab_is_airy", energy_is_conserved_and_isotropic_slab_is_airy},
+        {"fractional_mask_weights_power_for_every_method", fractional_mask_weights_power_for_every_method},
         {"batch_equals_single_calls_and_bad_stride_is_refused", batch_equals_single_calls_and_bad_stride_is_refused},
         {"photoelastic_shading_through_integrator_equals_direct_paths",
          photoelastic_shading_through_integrator_equals_direct_paths},

@@ -24,7 +24,7 @@ typedef struct {
     biref_complex C[2][2]; /* incident coherency C[i][j] = <e_i conj(e_j)>, trace = intensity */
     biref_complex P[2][2]; /* analyzer [in][out]; ignored when has_analyzer is 0 */
     int has_analyzer;
-    /* 1 when built by biref_light_sp and left so: C = diag(w_in), P = diag(mask), and the
+    /* 1 when built by biref_light_sp and left so: C = diag(w_in), P = diag(sqrt(mask)), and the
      * detected colour of a slab is a mix of its four s/p pair intensities (biref_light_mix). */
     int sp_model;
     double w_in[2], mask[2];
@@ -36,7 +36,8 @@ typedef struct {
 } biref_light;
 
 /* The paper's light: incoherent fractions w_in[s], w_in[p] (>= 0) through an analyzer passing
- * mask[s], mask[p] (in [0, 1]); mask (1, 1) means no analyzer. BIREF_ERR_INVALID otherwise. */
+ * the power fractions mask[s], mask[p] (in [0, 1]; its Jones matrix is diag(sqrt(mask))); mask
+ * (1, 1) means no analyzer. BIREF_ERR_INVALID otherwise. */
 BIREF_API biref_status biref_light_sp(const double w_in[2], const double mask[2], biref_light *out);
 
 /* Incident light from Stokes parameters (biref_stokes_to_coherency), no analyzer. */
@@ -46,7 +47,7 @@ BIREF_API biref_status biref_light_stokes(const double stokes[4], biref_light *o
 BIREF_API void biref_light_coherency(const biref_complex C[2][2], biref_light *out);
 
 /* Puts an analyzer (Jones matrix [in][out]) behind the slab, or removes it (P = NULL). The
- * light leaves the paper's model unless P is diagonal with entries equal to its mask. */
+ * light leaves the paper's model unless P is diag(sqrt(mask)) of its mask. */
 BIREF_API void biref_light_set_analyzer(biref_light *l, const biref_complex P[2][2]);
 
 /* A world-fixed linear polarizer in front of the slab along the world axis `axis` (normalised here):

@@ -159,7 +159,7 @@ void biref_gl_scene_uniforms(const biref_scene *scene, const biref_spectral *sp,
     const int sp_mask = l->has_analyzer && !l->world_analyzer;
     double pv[4] = {l->world_polarizer, l->world_polarizer ? 0.5 : creal(l->C[0][0]),
                     l->world_polarizer ? 0.5 : creal(l->C[1][1]), l->world_analyzer};
-    double mask[2] = {sp_mask ? creal(l->P[0][0]) : 1.0, sp_mask ? creal(l->P[1][1]) : 1.0};
+    double mask[2] = {sp_mask ? l->mask[0] : 1.0, sp_mask ? l->mask[1] : 1.0}; /* power fractions */
     double zero[3] = {0, 0, 0};
     emitv(fn, user, "u_pol", 4, pv);
     emitv(fn, user, "u_mask", 2, mask);

@@ -13,7 +13,7 @@ biref_status biref_light_sp(const double w_in[2], const double mask[2], biref_li
         out->w_in[i] = w_in[i];
         out->mask[i] = mask[i];
         out->C[i][i] = w_in[i];
-        out->P[i][i] = mask[i];
+        out->P[i][i] = sqrt(mask[i]); /* mask is a power fraction; P acts on amplitudes */
     }
     /* A mask passing both is no analyzer at all: the integrators then skip the projection. */
     out->has_analyzer = !(mask[0] == 1.0 && mask[1] == 1.0);
@@ -48,7 +48,8 @@ void biref_light_set_analyzer(biref_light *l, const double complex P[2][2])
     }
     memcpy(l->P, P, sizeof l->P);
     l->has_analyzer = 1;
-    l->sp_model = l->sp_model && P[0][1] == 0.0 && P[1][0] == 0.0 && P[0][0] == l->mask[0] && P[1][1] == l->mask[1];
+    l->sp_model = l->sp_model && P[0][1] == 0.0 && P[1][0] == 0.0 && P[0][0] == sqrt(l->mask[0]) &&
+                  P[1][1] == sqrt(l->mask[1]);
 }
 
 biref_status biref_light_mix(const biref_light *l, const double X[2][2][3], double xyz[3])

@@ -11,7 +11,7 @@
  *     Xout[y][y'] = sum_o (t P)[y'][o] conj((t P)[y][o])           (exit, modes y, y')
  * and the reflections in between; the E term's geometric series (eqs. 20-21) takes Ein's diagonal
  * as its entry energies and Xout's diagonal as its exit weights. For C = diag(w_in) and
- * P = diag(mask) every term is the paper's mixed by biref_spectrum_mix.
+ * P = diag(sqrt(mask)) every term is the paper's mixed by biref_spectrum_mix.
  *
  * Keeping the result physical: eq. 26 can leave [0, inf) where internal reflections are strong.
  * A negative result is moved towards the incoherent path energy E (X = E + t (X - E), one t for

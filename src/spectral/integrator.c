@@ -305,9 +305,8 @@ void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_
     if (it->hits && light->sp_model && (!fp || one_prefilter(fp, n)))
         it->hits(it->sp, light->w_in, light->mask, hits, n, T, R, scalar, fp, NULL);
     else if (it->xhits && light->sp_model && (!fp || one_prefilter(fp, n))) {
-        /* The scalar expansion detects through P = diag(mask) as a Jones matrix: weights mask^2. */
-        const double m2[2] = {light->mask[0] * light->mask[0], light->mask[1] * light->mask[1]};
-        it->xhits(it->sp, &it->xopts, light->w_in, m2, hits, n, T, R, scalar, fp, NULL);
+        /* Power weights, as P = diag(sqrt(mask)) gives the scalar expansion. */
+        it->xhits(it->sp, &it->xopts, light->w_in, light->mask, hits, n, T, R, scalar, fp, NULL);
     } else
         memset(scalar, 1, n);
 }

@@ -413,8 +413,8 @@ static void light_per_hit_kernels_vs_scalar(int complex_light)
             CHECK(complex_light && f ? taken == 0 : taken >= (int)n - (int)n / 50);
         }
     }
-    /* The integrator's door: the analytic method takes them, a numeric method declines every hit
-     * (the expansion's lanes take real lights too: tests/test_expansion_packet.c). */
+    /* The integrator's door: the analytic method takes them (the expansion's and the numeric
+     * methods' lanes take them too: tests/test_expansion_packet.c, tests/test_numeric_lanes.c). */
     biref_integrator_options o;
     biref_integrator_options_default(&o);
     biref_integrator *it = NULL;
@@ -427,11 +427,6 @@ static void light_per_hit_kernels_vs_scalar(int complex_light)
             for (int b = 0; b < 3; b++) CHECK_NEAR(T[k][b], want[0][k][0][b], 1e-11);
         }
     CHECK(taken > 0);
-    biref_integrator_destroy(it);
-    o.method = BIREF_METHOD_NUMERIC;
-    CHECK(biref_integrator_create(sp, &o, &it, NULL, 0) == BIREF_OK);
-    biref_integrate_packet_hits_lit(it, &H, NULL, n, lights, T, R, scalar);
-    for (size_t k = 0; k < n; k++) CHECK(scalar[k] == 1);
     biref_integrator_destroy(it);
     biref_phase_prefilter_destroy(pf);
     biref_spectral_destroy(sp);

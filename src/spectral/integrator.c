@@ -298,8 +298,8 @@ void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_
 {
     if (it->plan && !biref_light_is_world_fixed(light)) { /* numeric methods (no footprints) */
         biref_numeric_packet_hits(it->plan, (const double complex(*)[2])light->C,
-                                  light->has_analyzer ? (const double complex(*)[2])light->P : NULL, hits, n, T, R,
-                                  scalar);
+                                  light->has_analyzer ? (const double complex(*)[2])light->P : NULL, NULL, hits, n, T,
+                                  R, scalar);
         return;
     }
     if (it->hits && light->sp_model && (!fp || one_prefilter(fp, n)))
@@ -311,7 +311,7 @@ void biref_integrate_packet_hits(const biref_integrator *it, const biref_packet_
         memset(scalar, 1, n);
 }
 
-/* Lights without imaginary parts (the expansion's lanes take real lights only). */
+/* Lights without imaginary parts (the expansion's and the numeric lanes take real lights only). */
 static int real_lights(const biref_packet_hit_light *lights, size_t n)
 {
     for (size_t k = 0; k < n; k++) {
@@ -327,6 +327,13 @@ void biref_integrate_packet_hits_lit(const biref_integrator *it, const biref_pac
                                      const biref_opl_footprint *fp, size_t n, const biref_packet_hit_light *lights,
                                      double (*T)[3], double (*R)[3], unsigned char *scalar)
 {
+    if (it->plan) { /* numeric methods (no footprints; real lights: their lanes take no others) */
+        if (real_lights(lights, n))
+            biref_numeric_packet_hits(it->plan, NULL, NULL, lights, hits, n, T, R, scalar);
+        else
+            memset(scalar, 1, n);
+        return;
+    }
     if (it->hits && (!fp || one_prefilter(fp, n)))
         it->hits(it->sp, NULL, NULL, hits, n, T, R, scalar, fp, lights);
     else if (it->xhits && (!fp || one_prefilter(fp, n)) && real_lights(lights, n))

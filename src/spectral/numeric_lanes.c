@@ -41,13 +41,15 @@ void biref_numeric_lanes_light(biref_numeric_lanes_job *job, const double comple
                                const double complex P[2][2])
 {
     job->pairs = 0;
-    job->has_P = P != NULL;
+    biref_nl_light *l = &job->light[0];
+    l->has_P = P != NULL;
     for (int a = 0; a < 2; a++)
         for (int b = 0; b < 2; b++) {
-            job->Cr[a][b] = creal(C[a][b]), job->Ci[a][b] = cimag(C[a][b]);
-            job->Pr[a][b] = P ? creal(P[a][b]) : a == b, job->Pi[a][b] = P ? cimag(P[a][b]) : 0.0;
+            l->Cr[a][b] = creal(C[a][b]), l->Ci[a][b] = cimag(C[a][b]);
+            l->Pr[a][b] = P ? creal(P[a][b]) : a == b, l->Pi[a][b] = P ? cimag(P[a][b]) : 0.0;
         }
-    if (P && is_real(job->Pi)) job->has_P = 2;
+    if (P && is_real(l->Pi)) l->has_P = 2;
+    job->light[1] = job->light[2] = *l;
 }
 
 int biref_numeric_lanes_run(const biref_numeric_plan *plan, const biref_slab_state *st, biref_numeric_lanes_job *job)
@@ -87,21 +89,23 @@ int biref_numeric_lanes_run(const biref_numeric_plan *plan, const biref_slab_sta
 }
 
 void biref_numeric_packet_hits(const biref_numeric_plan *plan, const double complex C[2][2],
-                               const double complex P[2][2], const biref_packet_hits *hits, size_t n, double (*T)[3],
-                               double (*R)[3], unsigned char *scalar)
+                               const double complex P[2][2], const biref_packet_hit_light *lights,
+                               const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3],
+                               unsigned char *scalar)
 {
     if (plan->isa == BIREF_SIMD_SCALAR) {
         memset(scalar, 1, n);
         return;
     }
     biref_numeric_lanes_job job;
-    biref_numeric_lanes_light(&job, C, P);
+    static const double complex unpolarized[2][2] = {{0.5, 0}, {0, 0.5}};
+    biref_numeric_lanes_light(&job, lights ? unpolarized : C, lights ? NULL : P);
     job.k = plan->k;
     for (int b = 0; b < 3; b++) job.w[b] = plan->wband[b];
     job.n = plan->padded;
     switch (plan->isa) {
-    case BIREF_SIMD_AVX512: biref_numeric_hits_avx512(&job, hits, n, T, R, scalar); break;
-    case BIREF_SIMD_AVX2: biref_numeric_hits_avx2(&job, hits, n, T, R, scalar); break;
-    default: biref_numeric_hits_baseline(&job, hits, n, T, R, scalar); break;
+    case BIREF_SIMD_AVX512: biref_numeric_hits_avx512(&job, hits, lights, n, T, R, scalar); break;
+    case BIREF_SIMD_AVX2: biref_numeric_hits_avx2(&job, hits, lights, n, T, R, scalar); break;
+    default: biref_numeric_hits_baseline(&job, hits, lights, n, T, R, scalar); break;
     }
 }

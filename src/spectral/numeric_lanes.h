@@ -32,6 +32,13 @@ typedef struct {
  * shares the state's round trip (below). */
 enum { BIREF_NL_T = 1, BIREF_NL_R = 2, BIREF_NL_RFLIP = 4 };
 
+/* A light: incident coherency C and analyzer P (has_P 0: none, 1: complex, 2: real). */
+typedef struct {
+    double Cr[2][2], Ci[2][2];
+    double Pr[2][2], Pi[2][2];
+    int has_P;
+} biref_nl_light;
+
 /* One state's wavelength-independent parts and what to compute. With A = diag(P_down) r12,
  * B = diag(P_up) r10 (rows scaled by the legs' phase factors), the round trip is D = A B and
  *   T      = t01 (I - D)^{-1} diag(P_down) t12                        (eq. 17)
@@ -47,10 +54,8 @@ typedef struct {
     biref_nl_cm2 M[2], Q[2], N[2];
     biref_nl_cm2 t01, t12, r01, r21;
     int outputs; /* BIREF_NL_* */
-    int pairs;   /* 1: the four |J[in][out]|^2 of each output; 0: one intensity under C and P */
-    double Cr[2][2], Ci[2][2]; /* incident coherency (pairs = 0) */
-    double Pr[2][2], Pi[2][2]; /* analyzer (has_P) */
-    int has_P; /* 0: none, 1: complex, 2: real */
+    int pairs;   /* 1: the four |J[in][out]|^2 of each output; 0: one intensity under its light */
+    biref_nl_light light[3]; /* per output (pairs = 0) */
     int real;  /* every coefficient matrix above is real (set by biref_numeric_lanes_run) */
     const double *k;        /* vacuum wavenumbers, n of them, n a multiple of BIREF_NUMERIC_LANES_PAD */
     const double *w[3];     /* band weights per sample (0 on padding) */
@@ -72,23 +77,26 @@ void biref_numeric_lanes_sincos_avx512(const double *x, int n, double *s, double
 
 /* A packet of hits (analytic_packet.h): each hit's state set up in lanes across hits (the analytic
  * kernel's v_prepare), then its wavelengths in lanes: T of the state and R of the flipped state
- * under job's light, as biref_numeric_hit gives them; scalar[k] = 1 for a hit the set-up cannot
+ * under job's lights (lights NULL) or each hit's own (lights[k].T and .R: a world-fixed polarizer
+ * and analyzer resolved in the hit's frames), as biref_numeric_hit gives them; scalar[k] = 1 for a hit the set-up cannot
  * take (as for the analytic kernel), whose T and R are left undefined. */
-void biref_numeric_hits_baseline(biref_numeric_lanes_job *job, const biref_packet_hits *hits, size_t n,
-                                 double (*T)[3], double (*R)[3], unsigned char *scalar);
-void biref_numeric_hits_avx2(biref_numeric_lanes_job *job, const biref_packet_hits *hits, size_t n, double (*T)[3],
-                             double (*R)[3], unsigned char *scalar);
-void biref_numeric_hits_avx512(biref_numeric_lanes_job *job, const biref_packet_hits *hits, size_t n,
-                               double (*T)[3], double (*R)[3], unsigned char *scalar);
+#define BIREF_NUMERIC_HITS_ARGS                                                                                   \
+    biref_numeric_lanes_job *job, const biref_packet_hits *hits, const biref_packet_hit_light *lights, size_t n,    \
+        double(*T)[3], double(*R)[3], unsigned char *scalar
+void biref_numeric_hits_baseline(BIREF_NUMERIC_HITS_ARGS);
+void biref_numeric_hits_avx2(BIREF_NUMERIC_HITS_ARGS);
+void biref_numeric_hits_avx512(BIREF_NUMERIC_HITS_ARGS);
 
 struct biref_numeric_plan;
 
-/* The renderer's door for the numeric methods (biref_integrate_packet_hits): the hits of a tile
- * under the coherency C and analyzer P (NULL: none) on the plan's instruction set; on the scalar
- * path (BIREF_SIMD=scalar) every hit is marked scalar. */
+/* The renderer's door for the numeric methods (biref_integrate_packet_hits and _lit): the hits of a
+ * tile under the coherency C and analyzer P (NULL: none), or under each hit's own light (lights not
+ * NULL; C, P unused), on the plan's instruction set; on the scalar path (BIREF_SIMD=scalar) every
+ * hit is marked scalar. */
 void biref_numeric_packet_hits(const struct biref_numeric_plan *plan, const double complex C[2][2],
-                               const double complex P[2][2], const biref_packet_hits *hits, size_t n, double (*T)[3],
-                               double (*R)[3], unsigned char *scalar);
+                               const double complex P[2][2], const biref_packet_hit_light *lights,
+                               const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3],
+                               unsigned char *scalar);
 
 /* The lanes path for one state: fills job (outputs, pairs, light as set by the caller) with
  * st's parts and runs the plan's kernel. 0 when the state or the plan cannot take it (a complex

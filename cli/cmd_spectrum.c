@@ -352,15 +352,8 @@ static int print_json(const spectrum_args *a, const spectrum_result *res)
     const char *pol_name, *an_name;
     names(a, polbuf, &pol_name, &an_name);
     const biref_slab *slab = &a->so.slab;
-    cJSON *root = cJSON_CreateObject();
-    cJSON_AddStringToObject(root, "method", biref_method_name(a->method));
-    if (res->n_samples)
-        cJSON_AddNumberToObject(root, "samples", res->n_samples);
-    else
-        cJSON_AddNullToObject(root, "samples");
-    cJSON_AddStringToObject(root, "cmf", biref_cmf_kind_name(a->cfg.cmf));
-    double range[2] = {a->cfg.lambda_min_nm, a->cfg.lambda_max_nm};
-    cJSON_AddItemToObject(root, "range_nm", cJSON_CreateDoubleArray(range, 2));
+    cJSON *root = json_spectrum_head(a->method, res->n_samples, &a->cfg);
+    const double range[2] = {a->cfg.lambda_min_nm, a->cfg.lambda_max_nm};
     cJSON *in = cJSON_AddObjectToObject(root, "input");
     if (a->so.material) {
         cJSON_AddItemToObject(in, "material", json_dispersive_material(a->so.material, range[0], range[1]));

@@ -81,3 +81,17 @@ cJSON *json_dispersive_material(const biref_material *m, double lo_nm, double hi
     for (int i = 0; i < n; i++) cJSON_AddItemToArray(arr, cJSON_CreateDoubleArray(ex[i], 2));
     return o;
 }
+
+cJSON *json_spectrum_head(biref_method method, int samples, const biref_spectral_config *cfg)
+{
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "method", biref_method_name(method));
+    if (samples)
+        cJSON_AddNumberToObject(root, "samples", samples);
+    else
+        cJSON_AddNullToObject(root, "samples");
+    cJSON_AddStringToObject(root, "cmf", biref_cmf_kind_name(cfg->cmf));
+    const double range[2] = {cfg->lambda_min_nm, cfg->lambda_max_nm};
+    cJSON_AddItemToObject(root, "range_nm", cJSON_CreateDoubleArray(range, 2));
+    return root;
+}

@@ -19,6 +19,9 @@ cJSON *json_sp_xyz_pairs(const double X[2][2][3]);
 /* A dispersive material used over [lo_nm, hi_nm]: {"name", "source", "range_nm" ([min, max], null
  * for none), "extrapolated_nm" (the parts of the band outside the range, [[a, b], ...])}. */
 cJSON *json_dispersive_material(const biref_material *m, double lo_nm, double hi_nm);
+/* The head shared by every `spectrum --json` object: {"method", "samples" (null when the method
+ * has none), "cmf", "range_nm"}. */
+cJSON *json_spectrum_head(biref_method method, int samples, const biref_spectral_config *cfg);
 /* Prints, frees, returns 0 or 1 on allocation failure. */
 int json_print_and_free(cJSON *root);
 

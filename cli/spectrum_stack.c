@@ -14,15 +14,7 @@ static const char *const SP[2] = {"s", "p"};
 static int print_json(const spectrum_stack_args *a, const biref_stack *stack, const biref_stack_state *st,
                       const biref_spectrum *spec, const double xyz[2][3], const biref_stack_spectrum_info *info)
 {
-    cJSON *root = cJSON_CreateObject();
-    cJSON_AddStringToObject(root, "method", biref_method_name(a->opts.method));
-    if (info->samples)
-        cJSON_AddNumberToObject(root, "samples", info->samples);
-    else
-        cJSON_AddNullToObject(root, "samples");
-    cJSON_AddStringToObject(root, "cmf", biref_cmf_kind_name(a->cfg.cmf));
-    double range[2] = {a->cfg.lambda_min_nm, a->cfg.lambda_max_nm};
-    cJSON_AddItemToObject(root, "range_nm", cJSON_CreateDoubleArray(range, 2));
+    cJSON *root = json_spectrum_head(a->opts.method, info->samples, &a->cfg);
     cJSON *in = cJSON_AddObjectToObject(root, "input");
     cJSON_AddStringToObject(in, "stack", a->file);
     cJSON_AddNumberToObject(in, "layers", stack->n_layers);

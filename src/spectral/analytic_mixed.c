@@ -88,12 +88,14 @@ static void paper_both(const biref_spectral *sp, const biref_slab_state *st, dou
                 for (int j = 0; j < 3; j++) w0[i][x][j] = biref_abs2(t01[i][x]) * ed[x][j];
         biref_path_energies((const double(*)[2][3])w0, 2, r12, eu, r10, ed, W);
         for (int o = 0; o < 2; o++) {
-            double complex desc[2][2][2];
+            double complex desc[2][2][2], last[2][4];
             if (any_p1)
                 for (int x = 0; x < 2; x++)
                     for (int y = 0; y < 2; y++)
                         for (int x2 = 0; x2 < 2; x2++)
                             desc[x][y][x2] = conj(t12[x][o]) * r12[x][y] * r10[y][x2] * t12[x2][o];
+            for (int x = 0; x < 2; x++)
+                for (int a = 0; a < 4; a++) last[x][a] = r12[x][a & 1] * r10[a & 1][a >> 1] * t12[a >> 1][o];
             for (int i = 0; i < 2; i++) {
                 double h[3] = {0.0, 0.0, 0.0};
                 if (!h0.zero) add_1(h, conj(t01[i][0] * t12[0][o]) * t01[i][1] * t12[1][o], &h0);
@@ -104,6 +106,10 @@ static void paper_both(const biref_spectral *sp, const biref_slab_state *st, dou
                                 const phase_term *p = &p1[(x2 << 1) | y]; /* down x2 + up y */
                                 if (!p->zero) add_w(h, W[i][x], desc[x][y][x2], p);
                             }
+                for (int x = 0; x < 2; x++) /* siblings: two last round trips a < b */
+                    for (int a = 0; a < 4; a++)
+                        for (int b = a + 1; b < 4; b++)
+                            if (!pair[a][b].zero) add_w(h, W[i][x], conj(last[x][a]) * last[x][b], &pair[a][b]);
                 for (int j = 0; j < 3; j++) {
                     double e = W[i][0][j] * biref_abs2(t12[0][o]) + W[i][1][j] * biref_abs2(t12[1][o]);
                     E[BIREF_TRANSMISSION][i][o][j] = e;

@@ -426,8 +426,9 @@ TransPhases transmission_phases(SlabState st)
     return ph;
 }
 
-/* Transmission, S(|e J P|^2) = E + 2H for light entering through top and leaving through bot. */
-void transmission_terms(SlabState st, TransPhases ph, vec3 C, vec4 P, out vec3 E, out vec3 H)
+/* Transmission, S(|e J P|^2) = E + 2H for light entering through top and leaving through bot;
+ * pair: reflection's order-1 pairs (ReflPhases), whose lags the siblings share. */
+void transmission_terms(SlabState st, TransPhases ph, PhaseInt pair[6], vec3 C, vec4 P, out vec3 E, out vec3 H)
 {
     vec2 Ein[4], TP[4], Xout[4];
     entry_matrix(C, st.top.td, Ein);
@@ -449,6 +450,19 @@ void transmission_terms(SlabState st, TransPhases ph, vec3 C, vec4 P, out vec3 E
             for (int x = 0; x < 2; x++)
                 add_re(H, W[x], cmul(cmul(st.bot.rd[2 * x + y], st.top.ru[2 * y + x2]), Xout[2 * x + x2]),
                        ph.trip[2 * y + x2]);
+    /* Siblings (analytic.c): from the bottom in mode x, two last round trips a < b
+     * (a = (down x2, up y)), with the lags of reflection's order-1 pairs (k as there). */
+    int k = 0;
+    for (int a = 0; a < 4; a++)
+        for (int b = a + 1; b < 4; b++) {
+            int xa = a / 2, ya = a - 2 * xa, xb = b / 2, yb = b - 2 * xb;
+            for (int x = 0; x < 2; x++) {
+                vec2 ca = cmul(st.bot.rd[2 * x + ya], st.top.ru[2 * ya + xa]);
+                vec2 cb = cmul(st.bot.rd[2 * x + yb], st.top.ru[2 * yb + xb]);
+                add_re(H, W[x], cmul(cmulc(ca, cb), Xout[2 * xa + xb]), pair[k]);
+            }
+            k++;
+        }
 }
 
 /* Reflection: the four order-1 paths a = (down x, up y) and their six pairwise differences. */
@@ -709,7 +723,7 @@ vec3 slab_colour(SlabState st, int which, vec3 C, vec4 P, bool paper_model)
     vec3 E, H;
     if (!paper_model) {
         if (which == 0)
-            transmission_terms(st, tp, C, P, E, H);
+            transmission_terms(st, tp, rp.pair, C, P, E, H);
         else
             reflection_terms(st, rp, C, P, E, H);
         vec3 X = E + 2.0 * H;
@@ -727,7 +741,7 @@ vec3 slab_colour(SlabState st, int which, vec3 C, vec4 P, bool paper_model)
         vec3 Ci = i == 0 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 0.0, 1.0);
         vec4 Po = o == 0 ? vec4(1.0, 0.0, 0.0, 0.0) : vec4(0.0, 0.0, 0.0, 1.0);
         if (d == 0)
-            transmission_terms(st, tp, Ci, Po, E, H);
+            transmission_terms(st, tp, rp.pair, Ci, Po, E, H);
         else
             reflection_terms(st, rp, Ci, Po, E, H);
         Es[n] = E;

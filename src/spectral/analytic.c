@@ -6,12 +6,12 @@
  * 20–21; the right-hand vector of eq. 21 is the exit coefficients, docs/PAPER-ERRATA.md). H keeps
  * only the pairs (path, path + one more round trip) ("descendants", eqs. 22–23 with m = 1)
  * plus the interference of the lowest-order paths among themselves (H0, eq. 24). Transmission
- * also keeps the siblings (ours, beyond the paper): the pairs of paths that coincide up to their
- * last round trip, weighted like the descendants by the energy W of all paths reaching the bottom.
- * Their lags are the birefringent ones (e − o down, up, both), as short as H0's, so they interfere
- * as strongly; eq. 26 alone misses ΔE00 7 of grazing light through strongly reflecting plates
- * (docs/ACCURACY-DISPERSION.md). They need no look-ups of their own: the lags are reflection's
- * order-1 pairs, which the energy balance computes anyway. Complex
+ * also keeps the siblings (ours, beyond the paper): the pairs of paths of one order that coincide
+ * up to their last round trip, weighted like the descendants by the energy W of all paths
+ * reaching the bottom, and the order-1 pairs whose entry legs differ. Their lags are the
+ * birefringent ones (multiples of e − o down and up), as short as H0's, so they interfere as
+ * strongly; without them eq. 26 misses up to ΔE00 7–12 of grazing light through strongly
+ * reflecting plates (docs/ACCURACY-DISPERSION.md). Complex
  * coefficients (total reflection) need S(sin(k D)) next to S(cos(k D)):
  * S(Re(c e^{ikD})) = Re(c) S(cos kD) - Im(c) S(sin kD).
  *
@@ -84,6 +84,21 @@ void biref_reflection_phases(const biref_spectral *sp, const biref_slab_state *s
     biref_order1_pairs(sp, st, fp, pair);
 }
 
+void biref_entry_pairs(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                       biref_phase_int ep[4][4])
+{
+    const double complex *od = st->opl_down, *ou = st->opl_up;
+    for (int a = 0; a < 4; a++)
+        for (int b = 0; b < 4; b++) {
+            /* (down o, down a >> 1, up a & 1) and (down e, down b >> 1, up b & 1) */
+            int n[4] = {0, 0, 0, 0};
+            n[BIREF_LEG_DOWN_E]++, n[BIREF_LEG_DOWN_O + (b >> 1)]++, n[BIREF_LEG_UP_O + (b & 1)]++;
+            n[BIREF_LEG_DOWN_O]--, n[BIREF_LEG_DOWN_O + (a >> 1)]--, n[BIREF_LEG_UP_O + (a & 1)]--;
+            double complex la = od[0] + od[a >> 1] + ou[a & 1], lb = od[1] + od[b >> 1] + ou[b & 1];
+            biref_phase_eval(sp, fp, lb - conj(la), n, &ep[a][b]);
+        }
+}
+
 /* E of transmission (eqs. 20-21): W[i][x], the energy of all paths arriving at the bottom in mode
  * x (eq. 21's left part), and the incoherent energy E[i][o] leaving through it. */
 static void transmission_energy(const biref_spectral *sp, const biref_slab_state *st, double W[2][2][3],
@@ -141,9 +156,10 @@ static void transmission(const biref_spectral *sp, const biref_slab_state *st, c
     const double complex(*t01)[2] = st->top.t_down, (*r10)[2] = st->top.r_up;
     const double complex(*r12)[2] = st->bottom.r_down, (*t12)[2] = st->bottom.t_down;
 
-    biref_phase_int h0, trip[2][2], pair[4][4];
+    biref_phase_int h0, trip[2][2], pair[4][4], ep[4][4];
     biref_transmission_phases(sp, st, fp, &h0, trip);
     biref_order1_pairs(sp, st, fp, pair);
+    biref_entry_pairs(sp, st, fp, ep);
     double W[2][2][3];
     transmission_energy(sp, st, W, E);
 
@@ -165,11 +181,15 @@ static void transmission(const biref_spectral *sp, const biref_slab_state *st, c
                 for (int y = 0; y < 2; y++)
                     for (int x2 = 0; x2 < 2; x2++) biref_add_re_integral(h, W[i][x], desc[x][y][x2], &trip[y][x2]);
             /* Siblings (ours): every path arriving at the bottom in mode x, then two different
-             * last round trips a < b; their lags are reflection's order-1 pairs. */
+             * last round trips a < b (lags: reflection's order-1 pairs); and the order-1 paths
+             * whose entry legs differ, (o, a) and (e, b). */
             for (int x = 0; x < 2; x++)
                 for (int a = 0; a < 4; a++)
                     for (int b = a + 1; b < 4; b++)
                         biref_add_re_integral(h, W[i][x], conj(last[x][a]) * last[x][b], &pair[a][b]);
+            const double complex ent = conj(t01[i][0]) * t01[i][1];
+            for (int a = 0; a < 4; a++)
+                for (int b = 0; b < 4; b++) biref_add_re_integral(h, ONE, ent * conj(last[0][a]) * last[1][b], &ep[a][b]);
         }
     }
 }

@@ -76,6 +76,11 @@ static void paper_both(const biref_spectral *sp, const biref_slab_state *st, dou
             }
         }
     int any_p1 = !p1[0].zero || !p1[1].zero || !p1[2].zero || !p1[3].zero;
+    /* Transmission's order-1 pairs whose entry legs differ (biref_entry_pairs). */
+    phase_term ep[4][4];
+    for (int a = 0; a < 4; a++)
+        for (int b = 0; b < 4; b++)
+            phase_at(sp, (od[1] + od[b >> 1] + ou[b & 1]) - conj(od[0] + od[a >> 1] + ou[a & 1]), &ep[a][b]);
 
     double ed[2][3], eu[2][3];
     for (int k = 0; k < 2; k++) biref_leg_energy(sp, od[k], ed[k]), biref_leg_energy(sp, ou[k], eu[k]);
@@ -110,6 +115,10 @@ static void paper_both(const biref_spectral *sp, const biref_slab_state *st, dou
                     for (int a = 0; a < 4; a++)
                         for (int b = a + 1; b < 4; b++)
                             if (!pair[a][b].zero) add_w(h, W[i][x], conj(last[x][a]) * last[x][b], &pair[a][b]);
+                const double complex ent = conj(t01[i][0]) * t01[i][1];
+                for (int a = 0; a < 4; a++)
+                    for (int b = 0; b < 4; b++)
+                        if (!ep[a][b].zero) add_1(h, ent * conj(last[0][a]) * last[1][b], &ep[a][b]);
                 for (int j = 0; j < 3; j++) {
                     double e = W[i][0][j] * biref_abs2(t12[0][o]) + W[i][1][j] * biref_abs2(t12[1][o]);
                     E[BIREF_TRANSMISSION][i][o][j] = e;

@@ -411,7 +411,7 @@ void path_energies(vec3 w0[2], vec2 Rin[4], vec3 e_mid[2], vec2 Rout[4], vec3 e_
 /* Table look-ups of one direction, shared by every polarisation form. Transmission: the order-0
  * pair and the four round trips (bottom reflection into y, up, top reflection into x2). */
 struct TransPhases {
-    PhaseInt h0, trip[4];
+    PhaseInt h0, trip[4], e2[3]; /* e2[m + 1]: 2 dd + m du, the entry pairs' lags beyond pair's */
 };
 
 TransPhases transmission_phases(SlabState st)
@@ -423,6 +423,7 @@ TransPhases transmission_phases(SlabState st)
             vec2 trip = st.ou[y] + st.od[x2];
             ph.trip[2 * y + x2] = phase_eval(trip.x, trip.y);
         }
+    for (int m = 0; m < 3; m++) ph.e2[m] = phase_eval(2.0 * st.dd + float(m - 1) * st.du, 0.0);
     return ph;
 }
 
@@ -462,6 +463,32 @@ void transmission_terms(SlabState st, TransPhases ph, PhaseInt pair[6], vec3 C, 
                 add_re(H, W[x], cmul(cmulc(ca, cb), Xout[2 * xa + xb]), pair[k]);
             }
             k++;
+        }
+    /* The order-1 paths whose entry legs differ, (o, a) and (e, b): lag kk dd + m du with
+     * kk = 1 + x_b - x_a, m = y_b - y_a (analytic.c's biref_entry_pairs). */
+    for (int a = 0; a < 4; a++)
+        for (int b = 0; b < 4; b++) {
+            int xa = a / 2, ya = a - 2 * xa, xb = b / 2, yb = b - 2 * xb;
+            int kk = 1 + xb - xa, m = yb - ya;
+            PhaseInt p = pair[0]; /* kk = 0: +-du, or 0 */
+            if (kk == 2) {
+                p = ph.e2[m + 1];
+            } else if (kk == 1) {
+                if (m == 0)
+                    p = ph.h0;
+                else if (m > 0)
+                    p = pair[2];
+                else
+                    p = pair[3];
+            } else {
+                p.s *= float(m);
+                if (m == 0) p.c = vec3(1.0);
+            }
+            float im = st.od[0].y + st.od[xa].y + st.ou[ya].y + st.od[1].y + st.od[xb].y + st.ou[yb].y;
+            p.att = im != 0.0 ? exp(-u_k_centroid * im) : vec3(1.0);
+            vec2 ca = cmul(st.bot.rd[ya], st.top.ru[2 * ya + xa]);
+            vec2 cb = cmul(st.bot.rd[2 + yb], st.top.ru[2 * yb + xb]);
+            add_re(H, vec3(1.0), cmul(cmul(Ein[1], cmulc(ca, cb)), Xout[2 * xa + xb]), p);
         }
 }
 

@@ -312,7 +312,7 @@ static void float_lanes_vs_double_lanes_random_lights(void)
         int taken = 0;
         for (size_t n = 1; n <= (quick ? 20 : 40) + 1; n++) {
             const size_t count = n <= (quick ? 20u : 40u) ? n : N; /* the last: all hits */
-            const size_t k0 = (n * 53) % (N - 40);
+            const size_t k0 = count == N ? 0 : (n * 53) % (N - 40);
             const biref_packet_hits Hk = {H.v + k0, H.stride};
             const double a = test_uniform(&rng, 0, 1), b = test_uniform(&rng, 0, 1);
             const double w_in[2] = {a, 1 - a}, mask[2] = {b, test_uniform(&rng, 0, 1)};

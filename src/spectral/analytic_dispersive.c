@@ -74,6 +74,52 @@ static biref_status band_states(const biref_spectral *sp, const biref_material *
     return BIREF_OK;
 }
 
+/* One run of a closed-form method: the slab state whose band `band` is kept, the node whose
+ * weight its lags integrate under (-1: none, the whole band) and the share of the band it stands
+ * for. */
+typedef struct {
+    biref_slab_state st;
+    int band, node;
+    double share;
+} band_run;
+
+/* The runs: with constant indices one per band at its centroid (the plain methods' numbers, bit
+ * for bit); with dispersion one per node of each band, on the slab at the node's wavenumber
+ * (biref_band_nodes), or the plan of the exact integration when a node's state is in the
+ * coherent regime. Returns the number of runs. */
+static int band_runs(const biref_spectral *sp, const biref_material *m, const biref_slab *geometry, double theta,
+                     const biref_slab_state st[3], const biref_leg_dispersion *ld, band_run run[3 * BIREF_BAND_NODES],
+                     const biref_numeric_plan **coherent, biref_status *status)
+{
+    int n = 0;
+    *status = BIREF_OK;
+    if (ld->flat) {
+        for (int j = 0; j < 3; j++) run[n++] = (band_run){st[j], j, -1, 1.0};
+        return n;
+    }
+    const biref_band_nodes *bn = biref_subband_nodes(ld->sb);
+    for (int j = 0; j < 3; j++) {
+        const double total = bn->mass[j][0] + bn->mass[j][1];
+        for (int i = 0; i < BIREF_BAND_NODES; i++) {
+            if (!(bn->mass[j][i] > 0.0)) continue;
+            band_run *r = &run[n++];
+            *status = prepared_at(m, geometry, theta, 2.0 * M_PI / bn->k[j][i], &r->st);
+            if (*status != BIREF_OK) return 0;
+            r->band = j, r->node = i, r->share = bn->mass[j][i] / total;
+            const biref_numeric_plan *c = biref_coherent_plan(sp, &r->st);
+            if (c && (!*coherent || biref_numeric_plan_samples(c) > biref_numeric_plan_samples(*coherent))) *coherent = c;
+        }
+    }
+    return n;
+}
+
+/* out_j = share x_j for the first run of band j, += for the next ones. */
+static void add_share(double out[3], const double x[3], const band_run *r, int first)
+{
+    const int j = r->band;
+    out[j] = first ? r->share * x[j] : out[j] + r->share * x[j];
+}
+
 static biref_opl_footprint dispersive_footprint(biref_leg_dispersion *ld)
 {
     biref_opl_footprint fp;
@@ -92,19 +138,24 @@ biref_status biref_integrate_material_closed_form(const biref_integrator *it, co
     biref_lag_cache cache = {.count = 0};
     biref_status s = band_states(sp, m, geometry, theta, st, &ld, &cache, &coherent);
     if (s != BIREF_OK) return s;
+    band_run run[3 * BIREF_BAND_NODES];
+    const int runs = coherent ? 0 : band_runs(sp, m, geometry, theta, st, &ld, run, &coherent, &s);
+    if (s != BIREF_OK) return s;
     if (coherent) return biref_spectrum_numeric_dispersive(coherent, m, geometry, theta, out);
     const biref_opl_footprint fp = dispersive_footprint(&ld);
-    for (int j = 0; j < 3; j++) {
+    for (int r = 0; r < runs; r++) {
         biref_spectrum x;
+        ld.node = run[r].node;
         if (biref_integrator_method(it) == BIREF_METHOD_EXPANSION)
-            s = biref_spectrum_expansion_footprint(sp, &st[j], &fp, biref_integrator_expansion_opts(it), &x);
+            s = biref_spectrum_expansion_footprint(sp, &run[r].st, &fp, biref_integrator_expansion_opts(it), &x);
         else
-            biref_spectrum_analytic_footprint(sp, &st[j], &fp, &x);
+            biref_spectrum_analytic_footprint(sp, &run[r].st, &fp, &x);
         if (s != BIREF_OK) return s;
+        const int first = r == 0 || run[r - 1].band != run[r].band;
         for (int i = 0; i < 2; i++)
             for (int o = 0; o < 2; o++) {
-                out->T[i][o][j] = x.T[i][o][j];
-                out->R[i][o][j] = x.R[i][o][j];
+                add_share(out->T[i][o], x.T[i][o], &run[r], first);
+                add_share(out->R[i][o], x.R[i][o], &run[r], first);
             }
     }
     return ld.failed; /* a sample point where the material is unphysical */
@@ -123,22 +174,26 @@ biref_status biref_integrate_material_closed_form_polarized(const biref_integrat
     biref_lag_cache cache = {.count = 0};
     biref_status s = band_states(sp, m, geometry, theta, st, &ld, &cache, &coherent);
     if (s != BIREF_OK) return s;
+    band_run run[3 * BIREF_BAND_NODES];
+    const int runs = coherent ? 0 : band_runs(sp, m, geometry, theta, st, &ld, run, &coherent, &s);
+    if (s != BIREF_OK) return s;
     *order_used = -1;
     if (coherent) {
         *order_used = 0;
         return biref_spectrum_numeric_dispersive_polarized(coherent, m, geometry, theta, which, C, P, xyz);
     }
     const biref_opl_footprint fp = dispersive_footprint(&ld);
-    for (int j = 0; j < 3; j++) {
+    for (int r = 0; r < runs; r++) {
         double x[3];
         int order = -1;
+        ld.node = run[r].node;
         if (biref_integrator_method(it) == BIREF_METHOD_EXPANSION)
-            s = biref_expansion_polarized_footprint(sp, &st[j], &fp, which, C, P, biref_integrator_expansion_opts(it), x,
-                                                    &order);
+            s = biref_expansion_polarized_footprint(sp, &run[r].st, &fp, which, C, P, biref_integrator_expansion_opts(it),
+                                                    x, &order);
         else
-            biref_analytic_general(sp, &st[j], &fp, which, C, P, x);
+            biref_analytic_general(sp, &run[r].st, &fp, which, C, P, x);
         if (s != BIREF_OK) return s;
-        xyz[j] = x[j];
+        add_share(xyz, x, &run[r], r == 0 || run[r - 1].band != run[r].band);
         if (order > *order_used) *order_used = order;
     }
     return ld.failed; /* a sample point where the material is unphysical */

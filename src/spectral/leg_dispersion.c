@@ -2,6 +2,7 @@
  * the sub-band tables (subband.h, docs/PHYSICS.md §7). */
 #include <complex.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "optics/modes_internal.h"
@@ -151,16 +152,25 @@ static int slot(const biref_lag_cache *lc, const int n[4])
     return -1;
 }
 
+biref_lag_cache *biref_lag_cache_create(void)
+{
+    biref_lag_cache *lc = malloc(sizeof *lc);
+    if (!lc) return NULL;
+    lc->count = 0;
+    memset(lc->used, 0, sizeof lc->used);
+    return lc;
+}
+
 static int cached(const biref_lag_cache *lc, const int n[4], int node, double c[3], double s[3])
 {
-    const int i = lc ? slot(lc, n) : -1;
+    const int i = lc && node >= 0 ? slot(lc, n) : -1;
     if (i < 0 || !lc->used[i]) return 0;
-    for (int j = 0; j < 3; j++) c[j] = lc->c[i][1 + node][j], s[j] = lc->s[i][1 + node][j];
+    for (int j = 0; j < 3; j++) c[j] = lc->c[i][node][j], s[j] = lc->s[i][node][j];
     return 1;
 }
 
-/* Entry 0 the whole band's integrals, 1 + i node i's. */
-static void remember(biref_lag_cache *lc, const int n[4], const double (*c)[3], const double (*s)[3])
+/* The integrals under each node's weight. */
+static void remember(biref_lag_cache *lc, const int n[4], const double complex (*node)[3])
 {
     /* Leg counts beyond a signed char (orders past 127) are not cached. */
     for (int l = 0; l < 4; l++)
@@ -170,8 +180,8 @@ static void remember(biref_lag_cache *lc, const int n[4], const double (*c)[3], 
     lc->used[i] = 1;
     lc->count++;
     for (int l = 0; l < 4; l++) lc->n[i][l] = (signed char)n[l];
-    for (int e = 0; e < 1 + BIREF_BAND_NODES; e++)
-        for (int j = 0; j < 3; j++) lc->c[i][e][j] = c[e][j], lc->s[i][e][j] = s[e][j];
+    for (int e = 0; e < BIREF_BAND_NODES; e++)
+        for (int j = 0; j < 3; j++) lc->c[i][e][j] = creal(node[e][j]), lc->s[i][e][j] = cimag(node[e][j]);
 }
 
 void biref_lag_integrals(const biref_spectral *sp, biref_leg_dispersion *ld, double opd, const int n[4],
@@ -220,13 +230,9 @@ void biref_lag_integrals(const biref_spectral *sp, biref_leg_dispersion *ld, dou
     } else
         subband_sum(ld->sb, Phi, G, k, level, m0, m1);
     biref_lag_node_integrals(biref_subband_nodes(ld->sb), m0, m1, far, node);
-    double all_c[1 + BIREF_BAND_NODES][3], all_s[1 + BIREF_BAND_NODES][3];
-    for (int j = 0; j < 3; j++) {
-        all_c[0][j] = creal(m0[j]), all_s[0][j] = cimag(m0[j]);
-        for (int i = 0; i < BIREF_BAND_NODES; i++) all_c[1 + i][j] = creal(node[i][j]), all_s[1 + i][j] = cimag(node[i][j]);
-    }
-    remember(ld->cache, n, (const double(*)[3])all_c, (const double(*)[3])all_s);
-    for (int j = 0; j < 3; j++) c[j] = all_c[1 + ld->node][j], s[j] = all_s[1 + ld->node][j];
+    remember(ld->cache, n, (const double complex(*)[3])node);
+    const double complex *out = ld->node >= 0 ? node[ld->node] : m0;
+    for (int j = 0; j < 3; j++) c[j] = creal(out[j]), s[j] = cimag(out[j]);
     if (level_out) *level_out = level;
     if (residual_out) *residual_out = res;
 }

@@ -64,16 +64,21 @@ void biref_band_nodes_choose(const double moment[3][4], const double kref[3], bi
 void biref_lag_node_integrals(const biref_band_nodes *bn, const double complex m0[3], const double complex m1[3],
                               int far, double complex node[BIREF_BAND_NODES][3]);
 
-/* Phase integrals already taken for one slab, by lag (the band runs look up the same lags): an
- * open-addressing table on the lag's leg counts, each entry the whole band's integrals and the
- * nodes' (index 0 and 1 + i); when it is full, lags are computed anew. */
-#define BIREF_LAG_CACHE 256
+/* Phase integrals already taken for one slab, by lag (the six band runs look up the same lags):
+ * an open-addressing table on the lag's leg counts, each entry the integrals under both nodes'
+ * weights; filled to half, beyond which lags are computed anew (a thick plate's expansion asks
+ * for ~500 distinct lags). Heap-allocated per call (~100 kB; biref_lag_cache_create). */
+#define BIREF_LAG_CACHE 1024
 typedef struct {
     int count;
     unsigned char used[BIREF_LAG_CACHE];
     signed char n[BIREF_LAG_CACHE][4];
-    double c[BIREF_LAG_CACHE][1 + BIREF_BAND_NODES][3], s[BIREF_LAG_CACHE][1 + BIREF_BAND_NODES][3];
+    double c[BIREF_LAG_CACHE][BIREF_BAND_NODES][3], s[BIREF_LAG_CACHE][BIREF_BAND_NODES][3];
 } biref_lag_cache;
+
+/* An empty cache, or NULL when out of memory (the look-ups then compute every lag anew: the same
+ * numbers). Freed with free(). */
+biref_lag_cache *biref_lag_cache_create(void);
 
 /* The legs' phases of one slab of a dispersive material at one angle: per leg type (in
  * biref_opl_footprint order) the phase φ_l = k Re(opl_l) and the group path φ_l' = dφ_l/dk at the

@@ -1,15 +1,17 @@
 /* The analytic method and the path-group expansion for a dispersive material (material.h),
  * closed-form (docs/PHYSICS.md §7). Per colour-matching band j the modes and Fresnel coefficients
- * are those at the band's centroid λ_j = 2π/k_j (the paper's representative permittivity per
- * band): the unchanged methods integrate that band's slab state, and only their phase integrals
- * change. Every phase integral is of a lag Φ(k) = Σ_l n_l k opl_l(k), no longer linear in k; it
- * is taken as a sum over sub-bands of Φ's tangents (subband.h, leg_dispersion.c): one tangent
- * for the whole band where that stays within the phase tolerance, else the coarsest split of the
- * band into sub-bands (up to 32, narrower in the blue) whose tangents do. The lags' integrals do
- * not depend on the band run, so they are computed once per slab (biref_lag_cache). Band j of the
- * result is taken from the band-j run. Slabs in the coherent regime (thin, or evanescent coupling), and the few whose
- * birefringent lags still curve beyond BREAK_RAD on the finest split, are integrated exactly
- * with n(λ) at every sample instead. */
+ * are those at the band's two Gauss nodes (band_nodes.c): the unchanged methods integrate the
+ * slab state at each node, their phase integrals under the node's linear weight, and band j of the
+ * result is the two runs' band j added by the weights' masses (the amplitudes interpolated
+ * linearly in k across the band; the paper takes them at one representative permittivity). Every
+ * phase integral is of a lag Φ(k) = Σ_l n_l k opl_l(k), no longer linear in k; it is taken as a
+ * sum over sub-bands of Φ's tangents (subband.h, leg_dispersion.c): one tangent for the whole band
+ * where that stays within the phase tolerance, else the coarsest split of the band into sub-bands
+ * (up to 32, narrower in the blue) whose tangents do. The lags' integrals do not depend on the
+ * run, so they are computed once per slab (biref_lag_cache). Slabs in the coherent regime (thin,
+ * or evanescent coupling), and the few whose birefringent lags still curve beyond BREAK_RAD on the
+ * finest split, are integrated exactly with n(λ) at every sample instead; constant indices run
+ * once per band at its centroid, the plain methods' numbers. */
 #include <complex.h>
 #include <math.h>
 #include <stdlib.h>

@@ -124,72 +124,89 @@ static biref_status plan(const biref_spectral *sp, const biref_material *m, cons
     return BIREF_OK;
 }
 
-/* out_j = share x_j for the first run of band j, += for the next ones. */
-static void add_share(double out[3], const double x[3], const band_run *r, int first)
-{
-    const int j = r->band;
-    out[j] = first ? r->share * x[j] : out[j] + r->share * x[j];
-}
-
-static int first_of_band(const dispersive_plan *pl, int r) { return r == 0 || pl->run[r - 1].band != pl->run[r].band; }
-
-static biref_status closed_form_runs(const biref_integrator *it, dispersive_plan *pl, biref_spectrum *out)
+/* One run of the method the integrator holds, on run r: the four pairs of both directions (C
+ * NULL) or one direction under a general light (into x->T[0][0]). The expansion records its
+ * orders in pl->ld.order_seen, from pl->ld.order_floor up. */
+static biref_status run_method(const biref_integrator *it, dispersive_plan *pl, int r, int which,
+                               const double complex (*C)[2], const double complex (*P)[2], biref_spectrum *x,
+                               int *order)
 {
     const biref_spectral *sp = biref_integrator_spectral(it);
     biref_opl_footprint fp;
     memset(&fp, 0, sizeof fp);
     fp.disp = &pl->ld;
+    pl->ld.node = pl->run[r].node;
+    memset(pl->ld.order_seen, 0, sizeof pl->ld.order_seen);
+    const biref_slab_state *st = &pl->run[r].st;
+    if (biref_integrator_method(it) != BIREF_METHOD_EXPANSION) {
+        if (C)
+            biref_analytic_general(sp, st, &fp, which, C, P, x->T[0][0]);
+        else
+            biref_spectrum_analytic_footprint(sp, st, &fp, x);
+        return BIREF_OK;
+    }
+    const biref_expansion_opts *o = biref_integrator_expansion_opts(it);
+    return C ? biref_expansion_polarized_footprint(sp, st, &fp, which, C, P, o, x->T[0][0], order)
+             : biref_spectrum_expansion_footprint(sp, st, &fp, o, x);
+}
+
+/* Every run, then, for the expansion, again the runs whose orders fell below the other run's of
+ * their band (the band's results are added, so its runs share their orders); x[r] the results. */
+static biref_status all_runs(const biref_integrator *it, dispersive_plan *pl, int which,
+                             const double complex (*C)[2], const double complex (*P)[2], biref_spectrum *x,
+                             int *order_used)
+{
+    int seen[3 * BIREF_BAND_NODES][2][2], order = -1;
     for (int r = 0; r < pl->runs; r++) {
-        biref_spectrum x;
-        pl->ld.node = pl->run[r].node;
-        if (biref_integrator_method(it) == BIREF_METHOD_EXPANSION) {
-            biref_status s = biref_spectrum_expansion_footprint(sp, &pl->run[r].st, &fp, biref_integrator_expansion_opts(it), &x);
-            if (s != BIREF_OK) return s;
-        } else
-            biref_spectrum_analytic_footprint(sp, &pl->run[r].st, &fp, &x);
-        for (int i = 0; i < 2; i++)
-            for (int o = 0; o < 2; o++) {
-                add_share(out->T[i][o], x.T[i][o], &pl->run[r], first_of_band(pl, r));
-                add_share(out->R[i][o], x.R[i][o], &pl->run[r], first_of_band(pl, r));
-            }
+        memset(pl->ld.order_floor, 0, sizeof pl->ld.order_floor);
+        biref_status s = run_method(it, pl, r, which, C, P, &x[r], &order);
+        if (s != BIREF_OK) return s;
+        memcpy(seen[r], pl->ld.order_seen, sizeof seen[r]);
+        if (order > *order_used) *order_used = order;
+    }
+    if (biref_integrator_method(it) != BIREF_METHOD_EXPANSION) return pl->ld.failed;
+    for (int r = 0; r < pl->runs; r++) {
+        int floor[2][2] = {{0, 0}, {0, 0}}, below = 0;
+        for (int q = 0; q < pl->runs; q++)
+            for (int d = 0; pl->run[q].band == pl->run[r].band && d < 2; d++)
+                for (int e = 0; e < 2; e++) floor[d][e] = seen[q][d][e] > floor[d][e] ? seen[q][d][e] : floor[d][e];
+        for (int d = 0; d < 2; d++)
+            for (int e = 0; e < 2; e++) below |= seen[r][d][e] < floor[d][e];
+        if (!below) continue;
+        memcpy(pl->ld.order_floor, floor, sizeof floor);
+        biref_status s = run_method(it, pl, r, which, C, P, &x[r], &order);
+        if (s != BIREF_OK) return s;
+        if (order > *order_used) *order_used = order;
     }
     return pl->ld.failed; /* a sample point where the material is unphysical */
+}
+
+/* out_j = share x_j for the first run of band j, += for its next ones. */
+static void add_share(const dispersive_plan *pl, int r, const double x[3], double out[3])
+{
+    const int j = pl->run[r].band;
+    const double v = pl->run[r].share * x[j];
+    out[j] = r == 0 || pl->run[r - 1].band != j ? v : out[j] + v;
 }
 
 biref_status biref_integrate_material_closed_form(const biref_integrator *it, const biref_material *m,
                                                   const biref_slab *geometry, double theta, biref_spectrum *out)
 {
     dispersive_plan pl;
+    biref_spectrum x[3 * BIREF_BAND_NODES];
+    int order = -1;
     biref_status s = plan(biref_integrator_spectral(it), m, geometry, theta, &pl);
-    if (s == BIREF_OK)
-        s = pl.coherent ? biref_spectrum_numeric_dispersive(pl.coherent, m, geometry, theta, out)
-                        : closed_form_runs(it, &pl, out);
+    if (s == BIREF_OK && pl.coherent)
+        s = biref_spectrum_numeric_dispersive(pl.coherent, m, geometry, theta, out);
+    else if (s == BIREF_OK && (s = all_runs(it, &pl, 0, NULL, NULL, x, &order)) == BIREF_OK)
+        for (int r = 0; r < pl.runs; r++)
+            for (int i = 0; i < 2; i++)
+                for (int o = 0; o < 2; o++) {
+                    add_share(&pl, r, x[r].T[i][o], out->T[i][o]);
+                    add_share(&pl, r, x[r].R[i][o], out->R[i][o]);
+                }
     free(pl.ld.cache);
     return s;
-}
-
-static biref_status closed_form_runs_polarized(const biref_integrator *it, dispersive_plan *pl, int which,
-                                               const double complex C[2][2], const double complex P[2][2],
-                                               double xyz[3], int *order_used)
-{
-    const biref_spectral *sp = biref_integrator_spectral(it);
-    biref_opl_footprint fp;
-    memset(&fp, 0, sizeof fp);
-    fp.disp = &pl->ld;
-    for (int r = 0; r < pl->runs; r++) {
-        double x[3];
-        int order = -1;
-        pl->ld.node = pl->run[r].node;
-        if (biref_integrator_method(it) == BIREF_METHOD_EXPANSION) {
-            biref_status s = biref_expansion_polarized_footprint(sp, &pl->run[r].st, &fp, which, C, P,
-                                                                 biref_integrator_expansion_opts(it), x, &order);
-            if (s != BIREF_OK) return s;
-        } else
-            biref_analytic_general(sp, &pl->run[r].st, &fp, which, C, P, x);
-        add_share(xyz, x, &pl->run[r], first_of_band(pl, r));
-        if (order > *order_used) *order_used = order;
-    }
-    return pl->ld.failed;
 }
 
 biref_status biref_integrate_material_closed_form_polarized(const biref_integrator *it, const biref_material *m,
@@ -199,13 +216,14 @@ biref_status biref_integrate_material_closed_form_polarized(const biref_integrat
                                                             int *order_used)
 {
     dispersive_plan pl;
+    biref_spectrum x[3 * BIREF_BAND_NODES];
     biref_status s = plan(biref_integrator_spectral(it), m, geometry, theta, &pl);
     *order_used = -1;
     if (s == BIREF_OK && pl.coherent) {
         *order_used = 0;
         s = biref_spectrum_numeric_dispersive_polarized(pl.coherent, m, geometry, theta, which, C, P, xyz);
-    } else if (s == BIREF_OK)
-        s = closed_form_runs_polarized(it, &pl, which, C, P, xyz, order_used);
+    } else if (s == BIREF_OK && (s = all_runs(it, &pl, which, C, P, x, order_used)) == BIREF_OK)
+        for (int r = 0; r < pl.runs; r++) add_share(&pl, r, x[r].T[0][0], xyz);
     free(pl.ld.cache);
     return s;
 }

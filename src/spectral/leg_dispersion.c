@@ -76,6 +76,8 @@ biref_status biref_leg_dispersion_init(const biref_spectral *sp, const biref_mat
     ld->failed = BIREF_OK;
     ld->cache = NULL;
     ld->node = -1;
+    memset(ld->order_floor, 0, sizeof ld->order_floor);
+    memset(ld->order_seen, 0, sizeof ld->order_seen);
     memset(ld->have, 0, sizeof ld->have);
     const int last = BIREF_SUBBAND_POINTS - 1;
     sample(ld, 0);

@@ -98,6 +98,10 @@ typedef struct biref_leg_dispersion {
     double phi[4][BIREF_SUBBAND_POINTS], grp[4][BIREF_SUBBAND_POINTS];
     biref_lag_cache *cache;
     int node;
+    /* The expansion's adaptive orders ([T, R][pairs, groups]): it chooses at least order_floor
+     * and records its choice in order_seen (largest since reset), so that a band's two runs can
+     * be made to share their orders (analytic_dispersive.c). Zero: its own choice. */
+    int order_floor[2][2], order_seen[2][2];
 } biref_leg_dispersion;
 
 /* The codes of biref_material_indices at the points sampled at once; BIREF_ERR_NOMEM when the

@@ -120,6 +120,8 @@ void biref_gl_scene_uniforms(const biref_scene *scene, const biref_spectral *sp,
     EMIT_ARRAY("u_slab_half", 2, ns, (v_[0] = 0.5 * S[i].size[0], v_[1] = 0.5 * S[i].size[1]));
     EMIT_ARRAY("u_slab_axis", 3, ns, v3_slab_axis_world(S[i].axis, S[i].tangent, S[i].normal, v_));
     EMIT_ARRAY("u_slab_optics", 3, ns, (v_[0] = S[i].eta_o, v_[1] = S[i].eta_e, v_[2] = S[i].thickness_nm));
+    /* 1: a dispersive material, its indices in the texture of biref_gl_scene_materials. */
+    EMIT_ARRAY("u_slab_material", 1, ns, v_[0] = S[i].material != NULL);
 
     const int np = scene->n_panels;
     const biref_panel *P = scene->panels;
@@ -186,6 +188,6 @@ void biref_gl_scene_uniforms(const biref_scene *scene, const biref_spectral *sp,
     emitv(fn, user, "u_k_centroid", 3, t.k_centroid);
     biref_gl_plans_info pl;
     biref_gl_coherent_plans(sp, &pl, NULL);
-    double plan_grid[4] = {pl.width, pl.plans, pl.first_samples, 0.0};
+    double plan_grid[4] = {pl.width, pl.plans, pl.first_samples, pl.height + 1};
     emitv(fn, user, "u_plan_grid", 4, plan_grid);
 }

@@ -118,6 +118,8 @@ void biref_subbands_destroy(biref_subbands *sb)
 
 const double *biref_subband_points(const biref_subbands *sb) { return sb->k; }
 
+const double *biref_subband_table(const biref_subbands *sb, int level, int b) { return table_of(sb, level, b); }
+
 void biref_subband_eval(const biref_subbands *sb, int level, int b, double d, double complex v[3])
 {
     spectral_table_eval(sb->sp, table_of(sb, level, b), fabs(d), v);

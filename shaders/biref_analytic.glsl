@@ -8,7 +8,8 @@
  *   #define BIREF_FRAGMENT        the scene ray caster (fragment stage)
  * plus BIREF_MAX_SLABS / BIREF_MAX_PANELS (array sizes) and, for a display, BIREF_OUTPUT_SRGB
  * (8-bit sRGB out instead of linear XYZ). Without BIREF_SCENE only the per-hit-point part is
- * compiled: paste it into another renderer and call biref_shade_slab (docs/GPU.md).
+ * compiled: paste it into another renderer and call biref_shade_slab (docs/GPU.md); with
+ * BIREF_MATERIALS also biref_shade_material (dispersive materials; two more samplers).
  *
  * Everything is single precision. Where double precision is needed on the CPU, the shader
  * computes differences directly instead of subtracting large numbers (docs/GPU.md):
@@ -881,8 +882,16 @@ bool hit_result(bool ok, HitFrame f, inout vec3 T, inout vec3 R)
  * biref_gl_scene_materials: per slab u_plan_grid.w rows, first the indices (n_o, n_e, dn_o/dλ,
  * dn_e/dλ) at the plans' samples (texel for texel as u_plans), then one row with the same at the
  * sub-band points (texels 0-64) and at the three band centroids (65-67). */
+#if defined(BIREF_SCENE) || defined(BIREF_MATERIALS)
 uniform highp sampler2D u_subbands;
 uniform highp sampler2D u_material;
+#define BIREF_MATERIAL_TEXEL(xy) texelFetch(u_material, xy, 0)
+#define BIREF_SUBBAND_TEXEL(xy) texelFetch(u_subbands, xy, 0)
+#else
+/* Constant indices only (an embedder without BIREF_MATERIALS): no sampler to bind. */
+#define BIREF_MATERIAL_TEXEL(xy) vec4(0.0)
+#define BIREF_SUBBAND_TEXEL(xy) vec4(0.0)
+#endif
 const int SUBBAND_LEVELS = 5;         /* BIREF_SUBBAND_LEVELS */
 const int SUBBAND_POINTS = 65;        /* BIREF_SUBBAND_POINTS: 2 * 2^levels + 1 */
 const float SUBBAND_PHASE_TOL = 0.005; /* rad, BIREF_SUBBAND_PHASE_TOL */
@@ -944,7 +953,7 @@ void sample_legs(int row, vec3 A, float K, float d)
     for (int p = 0; p < subband_points(); p++) {
         float lambda = 2.0 * BIREF_PI / subband_k(p);
         vec2 Lo, Dd, Du;
-        leg_paths(texelFetch(u_material, ivec2(p, row), 0), A, K, d, Lo, Dd, Du);
+        leg_paths(BIREF_MATERIAL_TEXEL(ivec2(p, row)), A, K, d, Lo, Dd, Du);
         g_slope[p] = vec3(Lo.y, Dd.y, Du.y);
         g_group[p] = vec3(Lo.x, Dd.x, Du.x) - lambda * g_slope[p];
     }
@@ -969,8 +978,8 @@ void subband_eval(int t, float D, out vec3 re, out vec3 im)
 {
     TableNodes tn = table_nodes(abs(D));
     for (int j = 0; j < 3; j++) {
-        vec2 v = table_value(tn, texelFetch(u_subbands, ivec2(tn.m, 3 * t + j), 0),
-                             texelFetch(u_subbands, ivec2(tn.m + 1, 3 * t + j), 0));
+        vec2 v = table_value(tn, BIREF_SUBBAND_TEXEL(ivec2(tn.m, 3 * t + j)),
+                             BIREF_SUBBAND_TEXEL(ivec2(tn.m + 1, 3 * t + j)));
         re[j] = v.x;
         im[j] = D < 0.0 ? -v.y : v.y; /* S(e^{-ikD}) = conj S(e^{ikD}) */
     }
@@ -1121,7 +1130,7 @@ vec3 sample_integral(SlabState st[3], bool dispersive, int row, HitFrame f, floa
         vec4 s = texelFetch(u_plans, tx, 0);
         SlabState st0 = st[0];
         if (dispersive)
-            st0 = sample_state(st, texelFetch(u_material, ivec2(tx.x, row + tx.y), 0).xy, 2.0 * BIREF_PI / s.x, f.A,
+            st0 = sample_state(st, BIREF_MATERIAL_TEXEL(ivec2(tx.x, row + tx.y)).xy, 2.0 * BIREF_PI / s.x, f.A,
                                eta_i * f.sin_t, d);
         if (which == 1) st0 = slab_flip(st0);
         acc += s.yzw * coherent_detected(st0, which, which == 0 ? f.CT : f.CR, which == 0 ? f.PT : f.PR, s.x);
@@ -1154,7 +1163,7 @@ bool shade_hit(vec3 view, vec3 normal, vec3 tangent, vec3 axis, vec3 eta, bool d
     bool ok = true;
     int bands = (dispersive ? 3 : 1) + int(u_lut_band.w); /* bounds from a uniform: loops stay rolled */
     for (int j = 0; j < bands; j++) {
-        vec2 n = dispersive ? texelFetch(u_material, ivec2(SUBBAND_POINTS + j, points_row), 0).xy : eta.xy;
+        vec2 n = dispersive ? BIREF_MATERIAL_TEXEL(ivec2(SUBBAND_POINTS + j, points_row)).xy : eta.xy;
         ok = slab_prepare(n.x, n.y, f.A, d, eta_i, f.sin_t, st[j]) && ok;
     }
     /* Which directions are integrated exactly? Those in the coherent regime (for a material: in
@@ -1229,6 +1238,7 @@ bool biref_shade_slab(vec3 view, vec3 normal, vec3 tangent, vec3 axis, vec3 eta,
     return shade_hit(view, normal, tangent, axis, eta, false, 0, eta_i, L, T, R);
 }
 
+#if defined(BIREF_SCENE) || defined(BIREF_MATERIALS)
 /* The same for a slab of a dispersive material, thickness d_nm, whose data (u_material) start at
  * row `row` (slab i of biref_gl_scene_materials: i * u_plan_grid.w); needs u_subbands too. */
 bool biref_shade_material(vec3 view, vec3 normal, vec3 tangent, vec3 axis, int row, float d_nm, float eta_i,
@@ -1236,6 +1246,7 @@ bool biref_shade_material(vec3 view, vec3 normal, vec3 tangent, vec3 axis, int r
 {
     return shade_hit(view, normal, tangent, axis, vec3(0.0, 0.0, d_nm), true, row, eta_i, L, T, R);
 }
+#endif
 
 #ifdef BIREF_SCENE
 /* ------------------------------------------------------------------------------------------ */

@@ -92,6 +92,18 @@ vec2 table_value(TableNodes tn, vec4 A, vec4 B)
     return cmul(tn.carrier, tn.h.x * A.xy + tn.h.y * A.zw + tn.h.z * B.xy + tn.h.w * B.zw);
 }
 
+/* The first moment in k of the same, S(k e^{ikD}) = -i d/dD S(e^{ikD}): the carrier times
+ * (2 pi nu_c F - i F') (spectral_table_eval_moment). */
+vec2 table_moment(TableNodes tn, float D, vec4 A, vec4 B)
+{
+    float step_nm = u_lut_grid.x, t = D / step_nm - float(tn.m), t2 = t * t;
+    float g00 = (6.0 * t2 - 6.0 * t) / step_nm, g10 = 3.0 * t2 - 4.0 * t + 1.0, g11 = 3.0 * t2 - 2.0 * t;
+    vec2 F = tn.h.x * A.xy + tn.h.y * A.zw + tn.h.z * B.xy + tn.h.w * B.zw;
+    vec2 dF = g00 * A.xy + g10 * A.zw - g00 * B.xy + g11 * B.zw;
+    float kc = 2.0 * BIREF_PI * u_lut_band.x;
+    return cmul(tn.carrier, vec2(kc * F.x + dF.y, kc * F.y - dF.x));
+}
+
 /* S(cos(2 pi D / λ), Λ_j) and S(sin(...)) for the three bands. */
 void biref_phase_integrals(float D, out vec3 c, out vec3 s)
 {
@@ -881,7 +893,8 @@ bool hit_result(bool ok, HitFrame f, inout vec3 T, inout vec3 R)
 /* biref_gl_subband_table: table t = 2^L - 2 + b (level L, sub-band b) band j in row 3 t + j.
  * biref_gl_scene_materials: per slab u_plan_grid.w rows, first the indices (n_o, n_e, dn_o/dλ,
  * dn_e/dλ) at the plans' samples (texel for texel as u_plans), then one row with the same at the
- * sub-band points (texels 0-64) and at the three band centroids (65-67). */
+ * sub-band points (texels 0-64), at the three band centroids (65-67) and at band j's Gauss node i
+ * (68 + 2 j + i). */
 #if defined(BIREF_SCENE) || defined(BIREF_MATERIALS)
 uniform highp sampler2D u_subbands;
 uniform highp sampler2D u_material;
@@ -973,21 +986,62 @@ float level_residual(float G[SUBBAND_POINTS], float psi[SUBBAND_POINTS], int lev
     return worst;
 }
 
-/* Table t of the sub-bands at D (|D| <= d_max), the three bands as (re, im). */
-void subband_eval(int t, float D, out vec3 re, out vec3 im)
+/* Table t of the sub-bands (t < 0: the band's own, u_lut) at D (|D| <= d_max), the three bands
+ * as (re, im), and its first moment in k likewise (k real: both conjugate for D < 0). */
+void subband_eval(int t, float D, out vec3 re, out vec3 im, out vec3 kre, out vec3 kim)
 {
-    TableNodes tn = table_nodes(abs(D));
+    float a = abs(D);
+    TableNodes tn = table_nodes(a);
     for (int j = 0; j < 3; j++) {
-        vec2 v = table_value(tn, BIREF_SUBBAND_TEXEL(ivec2(tn.m, 3 * t + j)),
-                             BIREF_SUBBAND_TEXEL(ivec2(tn.m + 1, 3 * t + j)));
+        vec4 A, B;
+        if (t < 0) {
+            A = texelFetch(u_lut, ivec2(tn.m, j), 0);
+            B = texelFetch(u_lut, ivec2(tn.m + 1, j), 0);
+        } else {
+            A = BIREF_SUBBAND_TEXEL(ivec2(tn.m, 3 * t + j));
+            B = BIREF_SUBBAND_TEXEL(ivec2(tn.m + 1, 3 * t + j));
+        }
+        vec2 v = table_value(tn, A, B), vk = table_moment(tn, a, A, B);
+        float sg = D < 0.0 ? -1.0 : 1.0; /* S(e^{-ikD}) = conj S(e^{ikD}) */
         re[j] = v.x;
-        im[j] = D < 0.0 ? -v.y : v.y; /* S(e^{-ikD}) = conj S(e^{ikD}) */
+        im[j] = sg * v.y;
+        kre[j] = vk.x;
+        kim[j] = sg * vk.y;
     }
 }
 
-/* S(cos Φ), S(sin Φ) per band of the lag weighted by w (biref_lag_integrals); res: the largest
- * phase error of the tangents at the level used. */
-void lag_integrals(vec3 w, out vec3 c, out vec3 s, out float res)
+/* The amplitudes' wavenumbers (docs/PHYSICS.md §7): band j's two Gauss nodes k[j][i] and their
+ * masses S(ℓ_i, Λ_j), ℓ_i the linear weight that is 1 at node i and 0 at the other
+ * (biref_gl_scene_uniforms, from biref_band_nodes). */
+uniform vec3 u_band_node_k[2];
+uniform vec3 u_band_node_mass[2];
+
+/* The lag's integrals under node i's weight, S(ℓ_i e^{iΦ}) / S(ℓ_i), from m0 = S(e^{iΦ}) and
+ * m1 = S(k e^{iΦ}); beyond the tables (m1 unknown) the band's mean (biref_lag_node_integrals). */
+void node_integrals(int i, vec3 c0, vec3 s0, vec3 c1, vec3 s1, bool beyond, out vec3 c, out vec3 s)
+{
+    vec3 w = u_band_node_mass[i], wo = u_band_node_mass[1 - i], total = w + wo;
+    vec3 ko = u_band_node_k[1 - i], den = (u_band_node_k[i] - ko) * w;
+    for (int j = 0; j < 3; j++) {
+        if (!(w[j] > 0.0)) {
+            c[j] = 0.0;
+            s[j] = 0.0;
+        } else if (beyond || !(wo[j] > 0.0)) {
+            c[j] = c0[j] / total[j];
+            s[j] = s0[j] / total[j];
+        } else {
+            c[j] = (c1[j] - ko[j] * c0[j]) / den[j];
+            s[j] = (s1[j] - ko[j] * s0[j]) / den[j];
+        }
+    }
+}
+
+/* The lags' integrals under the nodes' weights: lag n, node i at index 2 n + i. */
+vec3 g_lag_c[18], g_lag_s[18];
+
+/* The lag weighted by w (biref_lag_integrals) into lag slot n; res: the largest phase error of
+ * the tangents at the level used. */
+void lag_integrals(vec3 w, int n, out float res)
 {
     float G[SUBBAND_POINTS], psi[SUBBAND_POINTS]; /* psi in cycles: Φ - k G = 2 pi psi */
     float psi_rad[SUBBAND_POINTS];
@@ -1007,30 +1061,31 @@ void lag_integrals(vec3 w, out vec3 c, out vec3 s, out float res)
             level = l;
             res = level_residual(G, psi_rad, l);
         }
-    vec3 re = vec3(0.0), im = vec3(0.0);
-    if (level == 0) {
-        /* The band's own table, which also covers the lags beyond the sub-band tables. */
-        biref_phase_integrals(G[mid], re, im);
-        vec2 rot = cycles_exp(psi[mid]);
-        c = rot.x * re - rot.y * im;
-        s = rot.y * re + rot.x * im;
-        return;
-    }
+    /* m0 = S(e^{iΦ}), m1 = S(k e^{iΦ}) as (c, s) pairs. Level 0: the band's own table, which
+     * also covers the lags beyond the sub-band tables (there without m1). */
+    bool beyond = level == 0 && !(abs(G[mid]) <= u_lut_grid.z);
+    vec3 c0 = vec3(0.0), s0 = vec3(0.0), c1 = vec3(0.0), s1 = vec3(0.0), re, im, kre, kim;
     int span = (SUBBAND_POINTS - 1) >> level;
-    c = vec3(0.0);
-    s = vec3(0.0);
     for (int b = 0; b < (1 << level); b++) {
         int m = b * span + span / 2;
-        subband_eval((1 << level) - 2 + b, G[m], re, im);
+        if (beyond) {
+            biref_phase_integrals(G[m], re, im);
+            kre = vec3(0.0);
+            kim = vec3(0.0);
+        } else {
+            subband_eval(level == 0 ? -1 : (1 << level) - 2 + b, G[m], re, im, kre, kim);
+        }
         vec2 rot = cycles_exp(psi[m]); /* the tangent's offset */
-        c += rot.x * re - rot.y * im;
-        s += rot.y * re + rot.x * im;
+        c0 += rot.x * re - rot.y * im;
+        s0 += rot.y * re + rot.x * im;
+        c1 += rot.x * kre - rot.y * kim;
+        s1 += rot.y * kre + rot.x * kim;
     }
+    for (int i = 0; i < 2; i++) node_integrals(i, c0, s0, c1, s1, beyond, g_lag_c[2 * n + i], g_lag_s[2 * n + i]);
 }
 
 /* The lags of both faces' states (transmission-frame legs): 0 e - o down, 1 e - o up, 2 their
  * sum, 3 their difference, 4 + 2 x + y the round trip (down x, up y), 8 = -(lag 3). */
-vec3 g_lag_c[9], g_lag_s[9];
 
 vec3 lag_weights(int i)
 {
@@ -1041,11 +1096,14 @@ vec3 lag_weights(int i)
     return vec3(2.0, float((i - 4) / 2), float((i - 4) % 2));
 }
 
+/* The run's node, whose weight the lags are taken under. */
+int g_node;
+
 PhaseInt lag_phase(int i, float im_opd)
 {
     PhaseInt p;
-    p.c = g_lag_c[i];
-    p.s = g_lag_s[i];
+    p.c = g_lag_c[2 * i + g_node];
+    p.s = g_lag_s[2 * i + g_node];
     p.att = im_opd != 0.0 ? exp(-u_k_centroid * im_opd) : vec3(1.0);
     return p;
 }
@@ -1090,7 +1148,7 @@ ReflPhases reflection_lags(SlabState st, bool flip)
  * k through the band states of the green and blue bands (the CPU prepares every sample's state
  * anew; llvmpipe stops a shader's loops after 65535 iterations in all, which a 4x4 solve per
  * sample exceeds: docs/GPU.md). */
-SlabState sample_state(SlabState st[3], vec2 n, float k, vec3 A, float K, float d)
+SlabState sample_state(SlabState st[9], vec2 n, float k, vec3 A, float K, float d)
 {
     SlabState s = st[1];
     float t = (k - u_k_centroid.y) / (u_k_centroid.z - u_k_centroid.y);
@@ -1120,7 +1178,7 @@ SlabState sample_state(SlabState st[3], vec2 n, float k, vec3 A, float K, float 
 /* The closed form integrated with a plan of this many samples for one direction: the coherent
  * regime, and for a dispersive material also the states whose lags' tangents break, then with
  * n(λ) at every sample (biref_spectrum_numeric_dispersive). */
-vec3 sample_integral(SlabState st[3], bool dispersive, int row, HitFrame f, float d, float eta_i, int which,
+vec3 sample_integral(SlabState st[9], bool dispersive, int row, HitFrame f, float d, float eta_i, int which,
                      int samples)
 {
     int base = plan_base(samples);
@@ -1138,13 +1196,13 @@ vec3 sample_integral(SlabState st[3], bool dispersive, int row, HitFrame f, floa
     return acc;
 }
 
-/* State q = 2 j + direction of the band states: band j, flipped for reflection. */
-SlabState band_state(SlabState st[3], int q)
+/* State idx of the prepared states, flipped for reflection. */
+SlabState state_at(SlabState st[9], int idx, bool flip)
 {
     SlabState s = st[0]; /* WebGL allows no ?: on structures */
-    for (int i = 1; i < 3; i++)
-        if (2 * i <= q) s = st[i];
-    if (q % 2 == 1) s = slab_flip(s);
+    for (int i = 1; i < 9; i++)
+        if (i == idx) s = st[i];
+    if (flip) s = slab_flip(s);
     return s;
 }
 
@@ -1157,60 +1215,73 @@ bool shade_hit(vec3 view, vec3 normal, vec3 tangent, vec3 axis, vec3 eta, bool d
     HitFrame f = hit_frame(view, normal, tangent, axis, L);
     float d = eta.z;
     int points_row = row + int(u_plan_grid.w + 0.5) - 1;
-    /* The slab state; for a dispersive material one per band, the modes and Fresnel
-     * coefficients at the band's centroid. */
-    SlabState st[3];
+    /* The slab states: for constant indices one; for a dispersive material (analytic_dispersive.c)
+     * 0-2 at the band centroids (the coherent regime and the plan where tangents break), 3 + 2 j + i
+     * at band j's Gauss node i (the runs: modes and Fresnel coefficients there). */
+    SlabState st[9];
     bool ok = true;
-    int bands = (dispersive ? 3 : 1) + int(u_lut_band.w); /* bounds from a uniform: loops stay rolled */
-    for (int j = 0; j < bands; j++) {
+    int states = (dispersive ? 9 : 1) + int(u_lut_band.w); /* bounds from a uniform: loops stay rolled */
+    for (int j = 0; j < states; j++) {
         vec2 n = dispersive ? BIREF_MATERIAL_TEXEL(ivec2(SUBBAND_POINTS + j, points_row)).xy : eta.xy;
         ok = slab_prepare(n.x, n.y, f.A, d, eta_i, f.sin_t, st[j]) && ok;
     }
-    /* Which directions are integrated exactly? Those in the coherent regime (for a material: in
-     * any band; the densest of those bands' plans), and for a material the states whose
-     * birefringent lags' tangents break (band 0's plan). State q = 2 j + direction. */
-    bool regime[6];
-    bool any_regime = false;
-    for (int q = 0; q < 2 * bands; q++) {
-        regime[q] = coherent_regime(band_state(st, q));
-        any_regime = any_regime || regime[q];
-    }
-    bool exact = any_regime;
-    if (dispersive && !any_regime) {
-        sample_legs(points_row, f.A, eta_i * f.sin_t, d);
-        float worst = 0.0, residual;
-        for (int i = 0; i < 9; i++) {
-            if (i == 8) {
-                g_lag_c[8] = g_lag_c[3];
-                g_lag_s[8] = -g_lag_s[3];
-            } else {
-                lag_integrals(lag_weights(i), g_lag_c[i], g_lag_s[i], residual);
-                if (i < 3) worst = max(worst, residual);
-            }
-            if (i == 2 && worst > TANGENT_BREAK_RAD) break;
-        }
-        exact = worst > TANGENT_BREAK_RAD;
-    }
+    /* Which directions are integrated exactly, with which plan: the densest plan of the centroid
+     * states in the coherent regime; else, for a material whose birefringent lags' tangents break,
+     * band 0's; else the densest of the node states in the regime. q = 2 state + direction. */
+    bool exact = false, broken = false;
     int ns[2];
     ns[0] = 0;
     ns[1] = 0;
-    for (int q = 0; q < 2 * bands; q++) {
-        if (!exact || (any_regime ? !regime[q] : q > 1)) continue;
-        ns[q % 2] = max(ns[q % 2], plan_samples(band_state(st, q)));
+    for (int pass = 0; pass < 2 && !exact; pass++) {
+        if (pass == 1) {
+            if (!dispersive) break;
+            sample_legs(points_row, f.A, eta_i * f.sin_t, d);
+            float worst = 0.0, residual;
+            for (int i = 0; i < 9; i++) {
+                if (i == 8) {
+                    for (int k = 0; k < 2; k++) {
+                        g_lag_c[16 + k] = g_lag_c[6 + k];
+                        g_lag_s[16 + k] = -g_lag_s[6 + k];
+                    }
+                } else {
+                    lag_integrals(lag_weights(i), i, residual);
+                    if (i < 3) worst = max(worst, residual);
+                }
+                if (i == 2 && worst > TANGENT_BREAK_RAD) break;
+            }
+            broken = worst > TANGENT_BREAK_RAD;
+        }
+        int first = pass == 0 ? 0 : 3, last = pass == 0 ? min(states, 3) : states;
+        for (int q = 2 * first; q < 2 * last; q++) {
+            int idx = q / 2, j = (idx - 3) / 2, i = (idx - 3) % 2;
+            if (pass == 1 && !broken && !(u_band_node_mass[i][j] > 0.0)) continue;
+            SlabState s = state_at(st, broken ? 0 : idx, q % 2 == 1);
+            if (broken ? idx != 3 : !coherent_regime(s)) continue;
+            exact = true;
+            ns[q % 2] = max(ns[q % 2], plan_samples(s));
+        }
     }
     vec3 res[2];
     int dirs = 2 + int(u_lut_band.w);
     for (int w = 0; w < dirs; w++) {
         res[w] = vec3(0.0);
-        if (ns[w] > 0) res[w] = sample_integral(st, dispersive, row, f, d, eta_i, w, ns[w]);
+        if (exact) res[w] = sample_integral(st, dispersive, row, f, d, eta_i, w, ns[w]);
     }
-    /* Elsewhere eq. 26 kept physical, per (band state, direction); a material's band state
-     * gives band j of the colour, its phase integrals from the lags. */
-    for (int k = 0; k < 2 * bands; k++) {
-        int j = k / 2, which = k - 2 * j;
-        if (ns[which] > 0) continue;
-        SlabState s = band_state(st, k);
+    /* Elsewhere eq. 26 kept physical, per (state, direction); a material's run at band j's node
+     * i gives band j of the colour, weighted by the node's share, its phase integrals the lags'
+     * under the node's weight. */
+    int runs = exact ? 0 : dispersive ? 12 : 2;
+    for (int q = 0; q < runs; q++) {
+        int idx = dispersive ? 3 + q / 2 : 0, which = q % 2, j = (idx - 3) / 2, i = (idx - 3) % 2;
+        float share = 1.0;
+        if (dispersive) {
+            float w = u_band_node_mass[i][j];
+            if (!(w > 0.0)) continue;
+            share = w / (u_band_node_mass[0][j] + u_band_node_mass[1][j]);
+            g_node = i;
+        }
         bool flip = which == 1;
+        SlabState s = state_at(st, idx, flip);
         TransPhases tp;
         ReflPhases rp;
         if (dispersive) {
@@ -1222,7 +1293,7 @@ bool shade_hit(vec3 view, vec3 normal, vec3 tangent, vec3 axis, vec3 eta, bool d
         }
         vec3 c = slab_colour_phases(s, which, flip ? f.CR : f.CT, flip ? f.PR : f.PT, f.paper_model, tp, rp);
         if (dispersive)
-            res[which][j] = c[j];
+            res[which][j] += share * c[j];
         else
             res[which] = c;
     }

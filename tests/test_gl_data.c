@@ -1,6 +1,7 @@
 /* The data the GLSL shader gets for dispersive materials (gpu.h): the sub-band tables sum to the
  * band's own table at every level, a slab's indices are the material's at the plans' samples,
- * the sub-band points and the band centroids (a user Sellmeier material as well as a named one),
+ * the sub-band points, the band centroids and their Gauss nodes (a user Sellmeier material as well
+ * as a named one),
  * a constant slab's rows are zero, an unphysical material is reported; the scene uniforms say
  * which slabs are dispersive, and only whole s/p masks reach the scene shader. */
 #include <math.h>
@@ -79,6 +80,17 @@ static void check_texel(const float *t, const biref_material *m, double lambda)
     }
 }
 
+/* The nodes' wavenumbers from the scene uniforms (u_band_node_k: node 0's three, then node 1's). */
+static float g_node_k[6];
+
+static void grab_nodes(void *user, const char *name, int comps, int count, const float *v)
+{
+    if (!strcmp(name, "u_band_node_k") && comps == 3 && count == 2) {
+        memcpy(g_node_k, v, sizeof g_node_k);
+        *(int *)user = 1;
+    }
+}
+
 static void check_slab_rows(const biref_spectral *sp, const biref_gl_material_info *mi, const float *rows,
                             const biref_material *m)
 {
@@ -100,6 +112,9 @@ static void check_slab_rows(const biref_spectral *sp, const biref_gl_material_in
     for (int p = 0; p < 65; p += 8)
         check_texel(pts + 4 * p, m, 2 * M_PI / sqrt(klo * klo + (khi * khi - klo * klo) * p / 64.0));
     for (int j = 0; j < 3; j++) check_texel(pts + 4 * (65 + j), m, 2 * M_PI / ti.k_centroid[j]);
+    /* Each band's two Gauss nodes, the wavenumbers the shader is told (u_band_node_k). */
+    for (int j = 0; j < 3; j++)
+        for (int i = 0; i < 2; i++) check_texel(pts + 4 * (68 + 2 * j + i), m, 2 * M_PI / g_node_k[3 * i + j]);
     free(plans);
 }
 
@@ -115,6 +130,17 @@ static void test_material_rows_hold_the_indices(void)
     e.a = 1.028;
     biref_material *user = NULL;
     CHECK(biref_material_from_formulas("user", &o, &e, NULL, &user, msg, sizeof msg) == BIREF_OK);
+    int seen = 0;
+    sc.slabs[1].material = biref_material_find("calcite");
+    biref_gl_scene_uniforms(&sc, sp, grab_nodes, &seen);
+    CHECK(seen);
+    /* Two nodes per band, about its centroid, inside the band's range. */
+    for (int j = 0; j < 3; j++) {
+        biref_gl_table_info ti;
+        biref_gl_table(sp, &ti, NULL);
+        CHECK(g_node_k[j] < ti.k_centroid[j] && ti.k_centroid[j] < g_node_k[3 + j]);
+        CHECK(g_node_k[j] > 2 * M_PI / ti.lambda_max_nm && g_node_k[3 + j] < 2 * M_PI / ti.lambda_min_nm);
+    }
     const biref_material *mats[2] = {biref_material_find("calcite"), user};
     for (int k = 0; k < 2; k++) {
         sc.slabs[1].material = mats[k];

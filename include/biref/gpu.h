@@ -60,7 +60,8 @@ BIREF_API biref_status biref_gl_subband_table(const biref_spectral *sp, biref_gl
  * layout (biref_gl_coherent_plans) with the material's (n_o, n_e, dn_o/dλ, dn_e/dλ) at each
  * sample wavelength, then one row with the same at the sub-band sample points (texels
  * 0..points-1, ascending wavenumber, uniform in k^2 over the band) and at the three band
- * centroids 2 pi / k_centroid[j] (texels points..points+2). dispersive: how many slabs have a
+ * centroids 2 pi / k_centroid[j] (texels points..points+2) and at band j's two Gauss nodes i
+ * (texel points + 3 + 2 j + i; the wavenumbers of u_band_node_k). dispersive: how many slabs have a
  * material. Fills info and, if texels is not NULL, width * height * 4 floats; BIREF_ERR_INVALID
  * (texels NaN there) where a material is unphysical (biref_material_check_band says why). */
 typedef struct {

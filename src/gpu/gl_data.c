@@ -7,6 +7,7 @@
 #include "biref/gpu.h"
 #include "shading/vec3.h"
 #include "spectral/spectral_internal.h"
+#include "spectral/subband.h"
 
 extern const char biref_gl_shader_text[];
 
@@ -186,6 +187,22 @@ void biref_gl_scene_uniforms(const biref_scene *scene, const biref_spectral *sp,
     emitv(fn, user, "u_lut_edge_lo", 3, t.edge_lo);
     emitv(fn, user, "u_lut_edge_hi", 3, t.edge_hi);
     emitv(fn, user, "u_k_centroid", 3, t.k_centroid);
+    /* Dispersive materials: each band's two Gauss nodes and their masses (biref_band_nodes; the
+     * sub-band tables are made for them only when a slab has a material). */
+    float nodes_k[6] = {0}, nodes_mass[6] = {0};
+    const biref_subbands *sb = NULL;
+    for (int i = 0; i < ns && !sb; i++)
+        if (S[i].material) sb = biref_spectral_subbands(sp);
+    if (sb) {
+        const biref_band_nodes *bn = biref_subband_nodes(sb);
+        for (int i = 0; i < BIREF_BAND_NODES; i++)
+            for (int j = 0; j < 3; j++) {
+                nodes_k[3 * i + j] = (float)bn->k[j][i];
+                nodes_mass[3 * i + j] = (float)bn->mass[j][i];
+            }
+    }
+    fn(user, "u_band_node_k", 3, 2, nodes_k);
+    fn(user, "u_band_node_mass", 3, 2, nodes_mass);
     biref_gl_plans_info pl;
     biref_gl_coherent_plans(sp, &pl, NULL);
     double plan_grid[4] = {pl.width, pl.plans, pl.first_samples, pl.height + 1};

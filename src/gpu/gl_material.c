@@ -1,6 +1,7 @@
 /* The shader's data for dispersive materials (docs/PHYSICS.md §7, docs/GPU.md): the sub-band
  * tables as one texture and, per slab of a dispersive material, its indices where the shader
- * needs them: at the band centroids (the band states' modes and Fresnel coefficients), at the
+ * needs them: at the band centroids and each band's two Gauss nodes (the band states' modes and
+ * Fresnel coefficients), at the
  * sub-band sample points with their slopes (the legs' group paths and phase offsets) and at every
  * sample of the coherent regime's plans (the exact integral with n(λ)). The same numbers the CPU
  * path evaluates in double precision, handed over as floats. */
@@ -64,9 +65,17 @@ static biref_status slab_rows(const biref_spectral *sp, const biref_material *m,
         const double k = sqrt(klo * klo + (khi * khi - klo * klo) * p / (BIREF_SUBBAND_POINTS - 1));
         if ((s = indices_texel(m, 2.0 * M_PI / k, last + 4 * p)) != BIREF_OK) r = s;
     }
-    /* The band centroids: the wavelengths of the band states. */
+    /* The band centroids, then each band's two Gauss nodes: the wavelengths of the band states. */
     for (int j = 0; j < 3; j++)
         if ((s = indices_texel(m, 2.0 * M_PI / sp->k_centroid[j], last + 4 * (BIREF_SUBBAND_POINTS + j))) != BIREF_OK) r = s;
+    const biref_subbands *sb = biref_spectral_subbands(sp);
+    if (!sb) return BIREF_ERR_NOMEM;
+    const biref_band_nodes *bn = biref_subband_nodes(sb);
+    for (int j = 0; j < 3; j++)
+        for (int i = 0; i < BIREF_BAND_NODES; i++)
+            if ((s = indices_texel(m, 2.0 * M_PI / bn->k[j][i], last + 4 * (BIREF_SUBBAND_POINTS + 3 + 2 * j + i))) !=
+                BIREF_OK)
+                r = s;
     return r;
 }
 

@@ -2,6 +2,7 @@
  * the geometric series of eqs. 20-21) and the choice of orders it drives (expansion.c). */
 #include "spectral/analytic_terms.h"
 #include "spectral/expansion_internal.h"
+#include "spectral/subband.h"
 
 static void inv_one_minus(const double M[2][2], double out[2][2])
 {
@@ -136,6 +137,17 @@ expansion_orders biref_xp_choose_orders(phase_cache *pc, const biref_slab_state 
      * 0.045 with two, 0.0068 without the limit at 1.2x the cost; docs/PHYSICS.md §5). */
     if (r.groups > r.pairs + 2) r.groups = r.pairs + 2;
     if (r.groups < r.pairs) r.groups = r.pairs;
+    /* A dispersive slab's band runs (analytic_dispersive.c): a band's two runs, on slabs a little
+     * apart in k, may land on either side of a threshold; their results are added, so they take
+     * the same orders (the floor; the larger of two choices keeps both invariants above). */
+    struct biref_leg_dispersion *ld = pc->fp ? pc->fp->disp : NULL;
+    if (ld) {
+        const int d = tm->lowest; /* 0: transmission, 1: reflection */
+        r.pairs = r.pairs > ld->order_floor[d][0] ? r.pairs : ld->order_floor[d][0];
+        r.groups = r.groups > ld->order_floor[d][1] ? r.groups : ld->order_floor[d][1];
+        if (r.pairs > ld->order_seen[d][0]) ld->order_seen[d][0] = r.pairs;
+        if (r.groups > ld->order_seen[d][1]) ld->order_seen[d][1] = r.groups;
+    }
     return r;
 }
 

@@ -65,7 +65,8 @@ const biref_spectral *biref_integrator_spectral(const biref_integrator *it);
 const biref_expansion_opts *biref_integrator_expansion_opts(const biref_integrator *it);
 
 /* A dispersive material by the analytic method or the expansion (the integrator's), each band's
- * phases linearised around its centroid (analytic_dispersive.c): the four pairs of both
+ * amplitudes at its two Gauss nodes and its phases on sub-band tangents (analytic_dispersive.c):
+ * the four pairs of both
  * directions, and one direction under a general light (*order_used: the expansion's largest pair
  * order over the bands, 0 in the coherent regime, -1 for the analytic method). The codes of
  * biref_integrate_material. */

@@ -2,6 +2,7 @@
  * the sub-band tables (subband.h, docs/PHYSICS.md §7). */
 #include <complex.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "optics/modes_internal.h"
@@ -74,6 +75,9 @@ biref_status biref_leg_dispersion_init(const biref_spectral *sp, const biref_mat
     ld->flat = 1;
     ld->failed = BIREF_OK;
     ld->cache = NULL;
+    ld->node = -1;
+    memset(ld->order_floor, 0, sizeof ld->order_floor);
+    memset(ld->order_seen, 0, sizeof ld->order_seen);
     memset(ld->have, 0, sizeof ld->have);
     const int last = BIREF_SUBBAND_POINTS - 1;
     sample(ld, 0);
@@ -110,22 +114,29 @@ static void lag_at(biref_leg_dispersion *ld, const int n[4], int p, double *Phi,
     }
 }
 
-/* The sum over the 2^level sub-bands of the tangents at their midpoints. */
-static void subband_sum(const biref_subbands *sb, const double *Phi, const double *G, const double *k, int level,
-                        double c[3], double s[3])
+/* The tangent of sub-band b of `level` (level 0: the whole range) at its midpoint: the offset
+ * e^{i(Φ(k_b) − k_b G_b)} and the group path G_b. */
+static void tangent(const double *Phi, const double *G, const double *k, int level, int b, double complex *rot,
+                    double *g)
 {
-    double complex v[3] = {0.0, 0.0, 0.0};
-    const int span = (BIREF_SUBBAND_POINTS - 1) >> level;
+    const int span = (BIREF_SUBBAND_POINTS - 1) >> level, mid = b * span + span / 2;
+    *g = G[mid];
+    *rot = cycles_exp((Phi[mid] - k[mid] * G[mid]) / (2.0 * M_PI));
+}
+
+/* The sums over the 2^level sub-bands of their tangents' integrals: m0 = S(e^{iΦ}, Λ_j) and
+ * m1 = S(k e^{iΦ}, Λ_j). */
+static void subband_sum(const biref_subbands *sb, const double *Phi, const double *G, const double *k, int level,
+                        double complex m0[3], double complex m1[3])
+{
+    for (int j = 0; j < 3; j++) m0[j] = m1[j] = 0.0;
     for (int b = 0; b < (1 << level); b++) {
-        const int mid = b * span + span / 2;
-        double complex t[3];
-        biref_subband_eval(sb, level, b, G[mid], t);
-        const double complex rot = cycles_exp((Phi[mid] - k[mid] * G[mid]) / (2.0 * M_PI)); /* the tangent's offset */
-        for (int j = 0; j < 3; j++) v[j] += rot * t[j];
-    }
-    for (int j = 0; j < 3; j++) {
-        c[j] = creal(v[j]);
-        s[j] = cimag(v[j]);
+        double complex rot, t[3], tk[3];
+        double g;
+        tangent(Phi, G, k, level, b, &rot, &g);
+        biref_subband_eval_moment(sb, level, b, g, t, tk);
+        for (int j = 0; j < 3; j++) m0[j] += rot * t[j];
+        for (int j = 0; j < 3; j++) m1[j] += rot * tk[j];
     }
 }
 
@@ -143,15 +154,25 @@ static int slot(const biref_lag_cache *lc, const int n[4])
     return -1;
 }
 
-static int cached(const biref_lag_cache *lc, const int n[4], double c[3], double s[3])
+biref_lag_cache *biref_lag_cache_create(void)
 {
-    const int i = lc ? slot(lc, n) : -1;
+    biref_lag_cache *lc = malloc(sizeof *lc);
+    if (!lc) return NULL;
+    lc->count = 0;
+    memset(lc->used, 0, sizeof lc->used);
+    return lc;
+}
+
+static int cached(const biref_lag_cache *lc, const int n[4], int node, double c[3], double s[3])
+{
+    const int i = lc && node >= 0 ? slot(lc, n) : -1;
     if (i < 0 || !lc->used[i]) return 0;
-    for (int j = 0; j < 3; j++) c[j] = lc->c[i][j], s[j] = lc->s[i][j];
+    for (int j = 0; j < 3; j++) c[j] = lc->c[i][node][j], s[j] = lc->s[i][node][j];
     return 1;
 }
 
-static void remember(biref_lag_cache *lc, const int n[4], const double c[3], const double s[3])
+/* The integrals under each node's weight. */
+static void remember(biref_lag_cache *lc, const int n[4], const double complex (*node)[3])
 {
     /* Leg counts beyond a signed char (orders past 127) are not cached. */
     for (int l = 0; l < 4; l++)
@@ -161,7 +182,8 @@ static void remember(biref_lag_cache *lc, const int n[4], const double c[3], con
     lc->used[i] = 1;
     lc->count++;
     for (int l = 0; l < 4; l++) lc->n[i][l] = (signed char)n[l];
-    for (int j = 0; j < 3; j++) lc->c[i][j] = c[j], lc->s[i][j] = s[j];
+    for (int e = 0; e < BIREF_BAND_NODES; e++)
+        for (int j = 0; j < 3; j++) lc->c[i][e][j] = creal(node[e][j]), lc->s[i][e][j] = cimag(node[e][j]);
 }
 
 void biref_lag_integrals(const biref_spectral *sp, biref_leg_dispersion *ld, double opd, const int n[4],
@@ -173,7 +195,7 @@ void biref_lag_integrals(const biref_spectral *sp, biref_leg_dispersion *ld, dou
         biref_spectral_phase_integrals(sp, opd, c, s);
         return;
     }
-    if (!level_out && !residual_out && cached(ld->cache, n, c, s)) return;
+    if (!level_out && !residual_out && cached(ld->cache, n, ld->node, c, s)) return;
     const double *k = biref_subband_points(ld->sb);
     double Phi[BIREF_SUBBAND_POINTS], G[BIREF_SUBBAND_POINTS];
     /* Level 0 needs the ends and the middle; the finer levels every point. */
@@ -190,20 +212,29 @@ void biref_lag_integrals(const biref_spectral *sp, biref_leg_dispersion *ld, dou
     }
     if (inside)
         while (res > BIREF_SUBBAND_PHASE_TOL && level < BIREF_SUBBAND_LEVELS) res = level_residual(Phi, G, k, ++level);
+    /* m0 the whole band's integral, m1 its first moment in k, which the nodes' weights need. */
+    double complex m0[3], m1[3], node[BIREF_BAND_NODES][3];
+    const int far = level == 0 && !(fabs(G[last / 2]) <= sp->d_max);
     if (level == 0) {
         /* The band's own table, which also covers the lags beyond the sub-band tables. */
-        const int mid = (BIREF_SUBBAND_POINTS - 1) / 2;
+        double complex rot;
+        double g;
+        tangent(Phi, G, k, 0, 0, &rot, &g);
         double c0[3], s0[3];
-        biref_spectral_phase_integrals(sp, G[mid], c0, s0);
-        const double complex rot = cycles_exp((Phi[mid] - k[mid] * G[mid]) / (2.0 * M_PI));
+        biref_spectral_phase_integrals(sp, g, c0, s0);
         const double cp = creal(rot), sn = cimag(rot);
-        for (int j = 0; j < 3; j++) {
-            c[j] = cp * c0[j] - sn * s0[j];
-            s[j] = sn * c0[j] + cp * s0[j];
+        for (int j = 0; j < 3; j++) m0[j] = (cp * c0[j] - sn * s0[j]) + I * (sn * c0[j] + cp * s0[j]);
+        if (!far) {
+            double complex t[3], tk[3];
+            spectral_table_eval_moment(sp, sp->table, fabs(g), t, tk);
+            for (int j = 0; j < 3; j++) m1[j] = rot * (g < 0.0 ? conj(tk[j]) : tk[j]);
         }
     } else
-        subband_sum(ld->sb, Phi, G, k, level, c, s);
-    remember(ld->cache, n, c, s);
+        subband_sum(ld->sb, Phi, G, k, level, m0, m1);
+    biref_lag_node_integrals(biref_subband_nodes(ld->sb), m0, m1, far, node);
+    remember(ld->cache, n, (const double complex(*)[3])node);
+    const double complex *out = ld->node >= 0 ? node[ld->node] : m0;
+    for (int j = 0; j < 3; j++) c[j] = creal(out[j]), s[j] = cimag(out[j]);
     if (level_out) *level_out = level;
     if (residual_out) *residual_out = res;
 }

@@ -30,6 +30,9 @@ struct biref_spectral {
     /* The same table re-laid out for the packet kernel (biref_table_packet_layout): 16 doubles
      * per node, 64-byte aligned, so that one lane's look-up reads 32 contiguous doubles. */
     double *packet_table;
+    /* The same rounded to float for the float lanes' look-ups (biref_table_packet_layout_f32):
+     * 32 floats per node, 64-byte aligned. */
+    float *packet_table_f32;
     /* Endpoint terms of the asymptotic expansion used beyond d_max (integration by parts):
      * S(e^{ikD}) ~ i/(2 pi D) [Λ λ^2 e^{2 pi i D/λ}]_{λmin}^{λmax}. */
     double edge_lo[3], edge_hi[3];
@@ -94,6 +97,36 @@ static inline void spectral_table_eval(const struct biref_spectral *sp, const do
         double im = h00 * a[4 * j + 1] + h10 * sp->step * a[4 * j + 3] + h01 * b[4 * j + 1] +
                     h11 * sp->step * b[4 * j + 3];
         v[j] = carrier * (re + I * im);
+    }
+}
+
+/* spectral_table_eval and, from the same rows, the table's first moment in k: vk[j] =
+ * S(k e^{ikD}, Λ_j) = -i d/dD S(e^{ikD}, Λ_j), which is the carrier times (2 pi nu_c F - i F')
+ * with F the demodulated value (its derivative that of the Hermite cubic). The closed forms with
+ * dispersion weigh their amplitudes linearly in k across a band (docs/PHYSICS.md §7). */
+static inline void spectral_table_eval_moment(const struct biref_spectral *sp, const double *table, double d,
+                                              double complex v[3], double complex vk[3])
+{
+    double x = d / sp->step;
+    int m = (int)x;
+    if (m >= sp->nodes - 1) m = sp->nodes - 2;
+    double t = x - m, t2 = t * t, t3 = t2 * t;
+    double h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + t, h01 = -2 * t3 + 3 * t2, h11 = t3 - t2;
+    /* d/dt of the basis, divided by the step: d/dD */
+    double g00 = (6 * t2 - 6 * t) / sp->step, g10 = 3 * t2 - 4 * t + 1, g01 = -g00, g11 = 3 * t2 - 2 * t;
+    const double *a = table + (size_t)m * 12, *b = a + 12;
+    double cr, ci;
+    small_angle_cos_sin(2.0 * M_PI * sp->nu_c * (d - m * sp->step), &cr, &ci);
+    double complex carrier = (sp->carrier[2 * m] + I * sp->carrier[2 * m + 1]) * (cr + I * ci);
+    const double kc = 2.0 * M_PI * sp->nu_c;
+    for (int j = 0; j < 3; j++) {
+        double re = h00 * a[4 * j] + h10 * sp->step * a[4 * j + 2] + h01 * b[4 * j] + h11 * sp->step * b[4 * j + 2];
+        double im = h00 * a[4 * j + 1] + h10 * sp->step * a[4 * j + 3] + h01 * b[4 * j + 1] +
+                    h11 * sp->step * b[4 * j + 3];
+        double dre = g00 * a[4 * j] + g10 * a[4 * j + 2] + g01 * b[4 * j] + g11 * b[4 * j + 2];
+        double dim = g00 * a[4 * j + 1] + g10 * a[4 * j + 3] + g01 * b[4 * j + 1] + g11 * b[4 * j + 3];
+        v[j] = carrier * (re + I * im);
+        vk[j] = carrier * ((kc * re + dim) + I * (kc * im - dre));
     }
 }
 

@@ -35,22 +35,59 @@ const double *biref_subband_points(const biref_subbands *sb);
 /* T_{L,b,j}(D) for the three bands, any real D with |D| <= the table's d_max. */
 void biref_subband_eval(const biref_subbands *sb, int level, int b, double d, double complex v[3]);
 
-/* Phase integrals already taken for one slab, by lag (the three band runs look up the same lags):
- * an open-addressing table on the lag's leg counts; when it is full, lags are computed anew. */
-#define BIREF_LAG_CACHE 256
+/* T_{L,b,j}(D) and its first moment in k, S(k 1_{L,b}(k) e^{ikD}, Λ_j), from the same rows. */
+void biref_subband_eval_moment(const biref_subbands *sb, int level, int b, double d, double complex v[3],
+                               double complex vk[3]);
+
+/* The wavenumbers at which the closed forms with dispersion take their amplitudes
+ * (docs/PHYSICS.md §7): per band j the two Gauss nodes k[j][i] of the weight Λ_j(k) dk, and
+ * mass[j][i] = S(ℓ_i, Λ_j), ℓ_i(k) the linear function of k that is 1 at node i and 0 at the
+ * other. A result F(k) (a method run on the slab at k) taken as Σ_i ℓ_i(k) F(k_i) across the
+ * band integrates exactly when F is a cubic in k where the band is not oscillating, and is the
+ * linear interpolation of F between the nodes under every phase. Read-only, made with the
+ * tables. */
+#define BIREF_BAND_NODES 2
+typedef struct {
+    double k[3][BIREF_BAND_NODES], mass[3][BIREF_BAND_NODES];
+} biref_band_nodes;
+
+const biref_band_nodes *biref_subband_nodes(const biref_subbands *sb);
+
+/* The nodes from the moments S((k - kref_j)^n, Λ_j), n = 0..3 (band_nodes.c); a band too narrow for two
+ * nodes (a degenerate range) gets one, at its centroid, with the whole mass. */
+void biref_band_nodes_choose(const double moment[3][4], const double kref[3], biref_band_nodes *bn);
+
+/* A lag's integrals under the nodes' weights, S(ℓ_i e^{iΦ}, Λ_j) / S(ℓ_i, Λ_j) (band_nodes.c),
+ * from its integrals m0 = S(e^{iΦ}, Λ_j) and m1 = S(k e^{iΦ}, Λ_j); far (m1 unknown: the lag is
+ * beyond the sub-band tables, where every integral is the band's endpoint term, below 1e-3):
+ * each node's is the band's. */
+void biref_lag_node_integrals(const biref_band_nodes *bn, const double complex m0[3], const double complex m1[3],
+                              int far, double complex node[BIREF_BAND_NODES][3]);
+
+/* Phase integrals already taken for one slab, by lag (the six band runs look up the same lags):
+ * an open-addressing table on the lag's leg counts, each entry the integrals under both nodes'
+ * weights; filled to half, beyond which lags are computed anew (a thick plate's expansion asks
+ * for ~500 distinct lags). Heap-allocated per call (~100 kB; biref_lag_cache_create). */
+#define BIREF_LAG_CACHE 1024
 typedef struct {
     int count;
     unsigned char used[BIREF_LAG_CACHE];
     signed char n[BIREF_LAG_CACHE][4];
-    double c[BIREF_LAG_CACHE][3], s[BIREF_LAG_CACHE][3];
+    double c[BIREF_LAG_CACHE][BIREF_BAND_NODES][3], s[BIREF_LAG_CACHE][BIREF_BAND_NODES][3];
 } biref_lag_cache;
+
+/* An empty cache, or NULL when out of memory (the look-ups then compute every lag anew: the same
+ * numbers). Freed with free(). */
+biref_lag_cache *biref_lag_cache_create(void);
 
 /* The legs' phases of one slab of a dispersive material at one angle: per leg type (in
  * biref_opl_footprint order) the phase φ_l = k Re(opl_l) and the group path φ_l' = dφ_l/dk at the
  * sample points, sampled when a look-up first needs them (have[p]; the ends and the middle at
  * once). flat: no leg's path depends on the wavelength (a material of constant indices), every
  * look-up is then the plain one. failed: the status of a sample point where the material is
- * unphysical (its phases are then NaN). cache: filled by the look-ups (may be NULL). */
+ * unphysical (its phases are then NaN). cache: filled by the look-ups (may be NULL). node: -1,
+ * the look-ups integrate over the whole band; i, under node i's weight ℓ_i (biref_band_nodes),
+ * divided by its mass: a weighted mean over the band, as the whole band's are means. */
 typedef struct biref_leg_dispersion {
     const biref_subbands *sb;
     const biref_material *m;
@@ -60,6 +97,11 @@ typedef struct biref_leg_dispersion {
     unsigned char have[BIREF_SUBBAND_POINTS];
     double phi[4][BIREF_SUBBAND_POINTS], grp[4][BIREF_SUBBAND_POINTS];
     biref_lag_cache *cache;
+    int node;
+    /* The expansion's adaptive orders ([T, R][pairs, groups]): it chooses at least order_floor
+     * and records its choice in order_seen (largest since reset), so that a band's two runs can
+     * be made to share their orders (analytic_dispersive.c). Zero: its own choice. */
+    int order_floor[2][2], order_seen[2][2];
 } biref_leg_dispersion;
 
 /* The codes of biref_material_indices at the points sampled at once; BIREF_ERR_NOMEM when the
@@ -71,7 +113,7 @@ biref_status biref_leg_dispersion_init(const biref_spectral *sp, const biref_mat
 #define BIREF_SUBBAND_PHASE_TOL 0.005
 
 /* S(cos Φ), S(sin Φ) per band of the lag Σ_l n_l (leg l), opd_nm its plain path difference (used
- * as it is when the material is flat). Level 0 is the tangent at the middle sample point through
+ * as it is when the material is flat), over the whole band or under a node's weight (ld->node). Level 0 is the tangent at the middle sample point through
  * the band's own table (also for lags beyond the sub-band tables, where the band integral has all
  * but vanished); *level_out (may be NULL): the level used, -1 for the plain look-up;
  * *residual_out (may be NULL): the largest phase error of the tangents there (radians). */

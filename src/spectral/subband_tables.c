@@ -20,6 +20,7 @@
 struct biref_subbands {
     const biref_spectral *sp;
     double k[BIREF_SUBBAND_POINTS];
+    biref_band_nodes nodes;
     double *tables; /* [level, sub-band][node][12], level L sub-band b at index 2^L - 2 + b */
 };
 
@@ -47,13 +48,22 @@ static biref_status build(biref_subbands *sb)
     const double dl = (lmax - lmin) / n;
     double(*lam)[5] = malloc((size_t)n * sizeof *lam); /* band weights * dl, frequency, sub-band */
     if (!lam) return BIREF_ERR_NOMEM;
+    double moment[3][4] = {{0.0}}; /* the nodes' moments about the centroids, by the same samples */
     for (int i = 0; i < n; i++) {
         double lambda = lmin + (i + 0.5) * dl, l3[3];
         biref_cmf_band_eval(&sp->band, lambda, l3);
         for (int j = 0; j < 3; j++) lam[i][j] = l3[j] * dl;
         lam[i][3] = 1.0 / lambda - sp->nu_c;
         lam[i][4] = finest_index(sp, 2.0 * M_PI / lambda);
+        for (int j = 0; j < 3; j++) {
+            const double x = 2.0 * M_PI / lambda - sp->k_centroid[j];
+            moment[j][0] += lam[i][j];
+            moment[j][1] += lam[i][j] * x;
+            moment[j][2] += lam[i][j] * x * x;
+            moment[j][3] += lam[i][j] * x * x * x;
+        }
     }
+    biref_band_nodes_choose((const double(*)[4])moment, sp->k_centroid, &sb->nodes);
     const int blocks = (sp->nodes + BUILD_BLOCK_NODES - 1) / BUILD_BLOCK_NODES;
 #pragma omp parallel for schedule(dynamic)
     for (int blk = 0; blk < blocks; blk++) {
@@ -117,6 +127,16 @@ void biref_subbands_destroy(biref_subbands *sb)
 }
 
 const double *biref_subband_points(const biref_subbands *sb) { return sb->k; }
+
+const biref_band_nodes *biref_subband_nodes(const biref_subbands *sb) { return &sb->nodes; }
+
+void biref_subband_eval_moment(const biref_subbands *sb, int level, int b, double d, double complex v[3],
+                               double complex vk[3])
+{
+    spectral_table_eval_moment(sb->sp, table_of(sb, level, b), fabs(d), v, vk);
+    if (d < 0.0) /* k is real: both conjugate */
+        for (int j = 0; j < 3; j++) v[j] = conj(v[j]), vk[j] = conj(vk[j]);
+}
 
 void biref_subband_eval(const biref_subbands *sb, int level, int b, double d, double complex v[3])
 {

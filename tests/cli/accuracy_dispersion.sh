@@ -10,12 +10,11 @@ expect_ok "help" accuracy --help
 expect_grep "help lists --material" "--material"
 expect_grep "help lists --thickness-um" "--thickness-um"
 
-# Per plate: the expansion's largest ΔE00 over the grid, the analytic method's mean and max up to
-# 70° (the paper's envelope, 1 and 4), and the analytic method against itself with constant indices
-# (mean + 0.35, max + 0.5; rutile's reflection of p light measures +0.26, its amplitudes at each band's
-# centroid, docs/ACCURACY-DISPERSION.md). LiNbO3's reflection of p light near Brewster's angle reaches 1.09 with the
-# expansion (the amplitudes at each band's centroid), so its bound is 1.2.
-plates=(calcite:1.0 quartz:1.0 rutile:1.0 linbo3:1.2 sapphire:1.0)
+# Per plate: the expansion's largest ΔE00 over the grid (1), the analytic method's mean and max up to
+# 70° (the paper's envelope, 1 and 4, the max where eq. 26 itself does not exceed it with constant
+# indices), and the analytic method against itself with constant indices (mean + 0.1, max + 0.5):
+# docs/ACCURACY-DISPERSION.md.
+plates=(calcite:1.0 quartz:1.0 rutile:1.0 linbo3:1.0 sapphire:1.0)
 # The sanitizer run (BIREF_TEST_QUICK): one plate on a 20° grid.
 [ -n "${BIREF_TEST_QUICK:-}" ] && { plates=(calcite:1.0); grid=(--theta-max-deg 80 --theta-step-deg 20 --threads 2); }
 for plate in "${plates[@]}"; do
@@ -33,7 +32,7 @@ for light, sides in r["lights"].items():
         if e["max"] > bound: bad.append(f"{light} {side}: expansion max {e['max']:.2f} > {bound}")
         if a["mean"] > 1.0: bad.append(f"{light} {side}: analytic mean {a['mean']:.2f} > 1")
         if a["max"] > max(4.0, c["max"] + 0.5): bad.append(f"{light} {side}: analytic max {a['max']:.2f}")
-        if a["mean"] > c["mean"] + 0.35: bad.append(f"{light} {side}: analytic mean {a['mean']:.2f} vs constant {c['mean']:.2f}")
+        if a["mean"] > c["mean"] + 0.1: bad.append(f"{light} {side}: analytic mean {a['mean']:.2f} vs constant {c['mean']:.2f}")
         if not (k["ignoring"]["max"] >= 0): bad.append(f"{light} {side}: no ignoring-dispersion error")
 for key in ("material", "thickness_um", "theta_max_deg", "theta_step_deg", "analytic_theta_max_deg", "criteria", "pass"):
     if key not in r: bad.append("missing key " + key)

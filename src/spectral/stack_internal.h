@@ -56,9 +56,10 @@ int biref_stack_legs_child(biref_stack_legs *legs, int id, int layer, int mode);
  * (node < 0) or under node `node`'s weight (biref_band_nodes, divided by its mass). A whole band's
  * pair that differs only by legs of constant index is looked up by delta (their paths'
  * difference) as a constant stack's. *residual: where even the finest sub-bands leave a tangent
- * more than BIREF_SUBBAND_PHASE_TOL from Φ, that distance (radians), else 0. */
-void biref_stack_legs_lag(const biref_stack_legs *legs, int a, int h, double delta, int node, double c[3],
-                          double s[3], double *residual);
+ * more than BIREF_SUBBAND_PHASE_TOL from Φ, that distance (radians), else 0. Remembers the pairs
+ * (the nodes' integrals of a band's runs and of the three bands are taken together). */
+void biref_stack_legs_lag(biref_stack_legs *legs, int a, int h, double delta, int node, double c[3], double s[3],
+                          double *residual);
 
 /* 1 when no leg's path depends on the wavelength (layers of constant materials). */
 int biref_stack_legs_flat(const biref_stack_legs *legs);
@@ -90,7 +91,7 @@ biref_status biref_stack_path_groups(const biref_stack_state *st, const double (
  * over the whole band (node < 0) or under a node's weight (biref_stack_legs_lag). */
 typedef struct {
     int faces, pairs, band;
-    const biref_stack_legs *legs;
+    biref_stack_legs *legs;
     int node;
 } biref_stack_sums;
 

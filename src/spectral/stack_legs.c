@@ -23,6 +23,12 @@
  * merging distance (stack_paths.c). */
 #define CLASS_NM 1e-6
 
+typedef struct {
+    int a, h; /* a < 0: free */
+    double residual;
+    double complex at[BIREF_BAND_NODES][3];
+} lag_entry;
+
 struct biref_stack_legs {
     const biref_spectral *sp;
     const biref_subbands *sb;
@@ -34,6 +40,10 @@ struct biref_stack_legs {
     uint16_t *counts;                        /* [id][class] */
     int n_ids, cap_ids;
     int *slots, n_slots; /* open addressing over ids by their counts, -1 free */
+    /* The pairs' integrals under both nodes' weights, by (a, h): a band's two runs and the three
+     * bands look up the same pairs. Open addressing, at most half full; beyond, computed anew. */
+    lag_entry *cache;
+    int n_cache, cap_cache;
 };
 
 /* Re opl and the group path of every leg of layer l at λ: a material's by its indices and
@@ -184,6 +194,7 @@ void biref_stack_legs_destroy(biref_stack_legs *L)
     free(L->flat);
     free(L->counts);
     free(L->slots);
+    free(L->cache);
     free(L);
 }
 
@@ -228,9 +239,34 @@ static double phase_moments(const biref_stack_legs *L, const double *Phi, const 
     return inside ? res : 0.0;
 }
 
-void biref_stack_legs_lag(const biref_stack_legs *L, int a, int h, double delta, int node, double c[3], double s[3],
+/* The cache entry of pair (a, h): where it is, or the free one where it would go; NULL when the
+ * cache cannot take it. */
+static lag_entry *cache_slot(biref_stack_legs *L, int a, int h)
+{
+    if (!L->cache) {
+        L->cap_cache = 4096;
+        L->cache = malloc((size_t)L->cap_cache * sizeof *L->cache);
+        if (!L->cache) return NULL;
+        for (int i = 0; i < L->cap_cache; i++) L->cache[i].a = -1;
+    }
+    const unsigned hash = (unsigned)a * 2654435761u ^ (unsigned)h * 40503u;
+    for (int probe = 0; probe < L->cap_cache; probe++) {
+        lag_entry *e = &L->cache[(hash + (unsigned)probe) % (unsigned)L->cap_cache];
+        if (e->a < 0) return 2 * L->n_cache < L->cap_cache ? e : NULL;
+        if (e->a == a && e->h == h) return e;
+    }
+    return NULL;
+}
+
+void biref_stack_legs_lag(biref_stack_legs *L, int a, int h, double delta, int node, double c[3], double s[3],
                           double *residual)
 {
+    lag_entry *e = node >= 0 ? cache_slot(L, a, h) : NULL;
+    if (e && e->a >= 0) {
+        for (int j = 0; j < 3; j++) c[j] = creal(e->at[node][j]), s[j] = cimag(e->at[node][j]);
+        *residual = e->residual;
+        return;
+    }
     const uint16_t *na = L->counts + (size_t)a * (size_t)L->nc, *nh = L->counts + (size_t)h * (size_t)L->nc;
     double Phi[BIREF_SUBBAND_POINTS] = {0}, G[BIREF_SUBBAND_POINTS] = {0};
     int flat = 1;
@@ -248,11 +284,16 @@ void biref_stack_legs_lag(const biref_stack_legs *L, int a, int h, double delta,
     double complex m0[3], m1[3] = {0, 0, 0}, at[BIREF_BAND_NODES][3];
     int far;
     const double res = phase_moments(L, Phi, G, m0, m1, &far);
+    *residual = res > BIREF_SUBBAND_PHASE_TOL ? res : 0.0;
     const double complex *out = m0;
     if (node >= 0) {
         biref_lag_node_integrals(biref_subband_nodes(L->sb), m0, m1, far, at);
         out = at[node];
+        if (e) {
+            e->a = a, e->h = h, e->residual = *residual;
+            memcpy(e->at, at, sizeof at);
+            L->n_cache++;
+        }
     }
     for (int j = 0; j < 3; j++) c[j] = creal(out[j]), s[j] = cimag(out[j]);
-    *residual = res > BIREF_SUBBAND_PHASE_TOL ? res : 0.0;
 }

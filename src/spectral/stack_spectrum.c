@@ -42,7 +42,7 @@ static double group_amplitude(const biref_stack_group *g)
 typedef struct {
     int lo, hi;  /* bands lo .. hi - 1 */
     int pairs;   /* the four s/p pairs too (else only the light's intensity) */
-    const biref_stack_legs *legs; /* dispersive: the pairs' phases by their leg counts; else NULL */
+    biref_stack_legs *legs;       /* dispersive: the pairs' phases by their leg counts; else NULL */
     int node;                     /* dispersive: under this node's weight (< 0: the whole band) */
     double *err;                  /* dispersive: the error estimate accumulates here; NULL otherwise */
 } band_range;

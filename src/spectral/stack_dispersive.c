@@ -1,7 +1,8 @@
 /* The path expansion of a stack with layers of a dispersive material (docs/STACKS.md, "Layers of a
  * dispersive material"): the slab's sub-band machinery (analytic_dispersive.c, docs/PHYSICS.md
- * §7) on the stack's paths. Per colour-matching band j the stack is prepared at the band's
- * centroid wavelength λ_j for the amplitudes (the interfaces' coefficients); the paths are
+ * §7) on the stack's paths. Per colour-matching band j the stack is prepared at each of the
+ * band's two Gauss nodes for the amplitudes (the interfaces' coefficients; the two runs added by
+ * the nodes' masses, each taking its pairs' integrals under its node's weight); the paths are
  * followed with the group paths of their legs there (which order them and decide which pairs are
  * coherent) and their counts of crossings per leg class (stack_legs.c), so that a pair of groups
  * has its exact phase difference Σ_c Δn_c k Re opl_c(k), integrated by tangents on nested

@@ -90,14 +90,23 @@ int main(int argc, char **argv)
     printf("packet kernel, %d fig9a-like hits, %.4g nm slab%s\n", HITS, thickness, prefilter ? ", prefiltered" : "");
     for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
         if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
-        const biref_packet_hits in = {&hits[0][0], HITS};
-        kernel_case c = {sp, biref_simd_hits_kernel((biref_simd_isa)isa), &in, prefilter ? fp : NULL, T, R, scalar};
-        bench_result r = bench_measure(run_kernel, &c, min_time, runs, 0);
-        int declined = 0;
-        for (int k = 0; k < HITS; k++) declined += scalar[k];
-        printf("%-9s %7.1f ns per hit (min), %7.1f (median)%s%s\n", biref_simd_isa_name((biref_simd_isa)isa),
-               r.ns_min / HITS, r.ns_median / HITS, declined ? ", some hits declined" : "",
-               r.cpu_share < BENCH_CPU_SHARE_OK ? " [descheduled: repeat]" : "");
+        /* The integrator's kernel (float lanes where the set has them), then the double one. */
+        for (int f64 = 0; f64 < 2; f64++) {
+            biref_packet_hits_kernel kernel = f64 ? biref_simd_hits_kernel_f64((biref_simd_isa)isa)
+                                                  : biref_simd_hits_kernel((biref_simd_isa)isa);
+            const int float_lanes = kernel != biref_simd_hits_kernel_f64((biref_simd_isa)isa);
+            if (f64 && !float_lanes && kernel == biref_simd_hits_kernel((biref_simd_isa)isa)) continue;
+            const biref_packet_hits in = {&hits[0][0], HITS};
+            kernel_case c = {sp, kernel, &in, prefilter ? fp : NULL, T, R, scalar};
+            bench_result r = bench_measure(run_kernel, &c, min_time, runs, 0);
+            int declined = 0;
+            for (int k = 0; k < HITS; k++) declined += scalar[k];
+            char name[32];
+            snprintf(name, sizeof name, "%s%s", biref_simd_isa_name((biref_simd_isa)isa),
+                     float_lanes ? " f32" : f64 ? " f64" : "");
+            printf("%-12s %7.1f ns per hit (min), %7.1f (median)%s%s\n", name, r.ns_min / HITS, r.ns_median / HITS,
+                   declined ? ", some hits declined" : "", r.cpu_share < BENCH_CPU_SHARE_OK ? " [descheduled: repeat]" : "");
+        }
     }
     printf("(checksum %g)\n", bench_sink);
     biref_phase_prefilter_destroy(pf);

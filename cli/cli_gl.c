@@ -20,21 +20,9 @@ static int open_gl(const char *cmd, gl_context **g)
     return 0;
 }
 
-int cli_gl_scene_check(const char *cmd, const biref_scene *scene)
-{
-    for (int i = 0; i < scene->n_slabs; i++)
-        if (scene->slabs[i].material)
-            return cli_error(cmd, "slabs[%d].material: the GL backend takes constant indices only (eta_o, eta_e); "
-                                  "render dispersive materials with --backend cpu",
-                             i),
-                   CLI_EXIT_USAGE;
-    return 0;
-}
-
 int cli_gl_render(const char *cmd, const biref_scene *scene, float *xyz, biref_render_stats *stats, double *gpu_ms,
                   char *device, size_t device_len)
 {
-    if (cli_gl_scene_check(cmd, scene)) return CLI_EXIT_USAGE;
     gl_context *g = NULL;
     int rc = open_gl(cmd, &g);
     if (rc) return rc;
@@ -57,7 +45,6 @@ static int cmp_double(const void *a, const void *b)
 int cli_gl_bench(const char *cmd, const biref_scene *scene, int frames, double *gpu_ms, double *wall_ms, char *device,
                  size_t device_len)
 {
-    if (cli_gl_scene_check(cmd, scene)) return CLI_EXIT_USAGE;
     gl_context *g = NULL;
     int rc = open_gl(cmd, &g);
     if (rc) return rc;

@@ -7,10 +7,6 @@
 /* Parses --backend: 0 = cpu, 1 = gl; prints the error and returns -1 otherwise. */
 int cli_parse_backend(const char *cmd, const char *text, int *gl);
 
-/* The GLSL shader takes constant indices only: a dispersive slab ("material") is refused with one
- * line (CLI_EXIT_USAGE), before any GL work; 0 otherwise. */
-int cli_gl_scene_check(const char *cmd, const biref_scene *scene);
-
 /* Renders the scene with the GL back-end into xyz (layout of biref_render_image). *gpu_ms is
  * the GPU time (timer query), device the context's "vendor, renderer, version". Returns 0, or prints one line and returns CLI_EXIT_FAIL (no EGL /
  * OpenGL 4.3, or a GL failure). */

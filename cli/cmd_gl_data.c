@@ -94,9 +94,15 @@ int cmd_gl_data(int argc, char **argv)
     cJSON *presets = cJSON_CreateObject();
     for (int i = first_arg; i < argc && !rc; i++) {
         biref_scene scene;
-        if ((rc = cli_load_scene(CMD, argv[i], &scene)) || (rc = cli_gl_refuse_stacks(CMD, argv[i], &scene)) ||
-            (rc = cli_gl_scene_check(CMD, &scene)))
+        if ((rc = cli_load_scene(CMD, argv[i], &scene)) || (rc = cli_gl_refuse_stacks(CMD, argv[i], &scene)))
             break;
+        for (int k = 0; k < scene.n_slabs && !rc; k++)
+            if (scene.slabs[k].material) {
+                cli_error(CMD, "%s: slabs[%d].material: the browser viewer takes constant indices only (eta_o, eta_e); "
+                          "render dispersive materials with biref render (--backend gl or cpu)", argv[i], k);
+                rc = CLI_EXIT_USAGE;
+            }
+        if (rc) break;
         char name[256];
         basename_of(argv[i], name, sizeof name);
         if (cJSON_GetObjectItemCaseSensitive(presets, name)) {

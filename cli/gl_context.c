@@ -11,6 +11,7 @@
 
 #include "biref/gpu.h"
 #include "gl_context.h"
+#include "biref/material.h"
 
 /* Array sizes compiled into the native shader: the scene format's own limits. */
 #define GL_MAX_SLABS BIREF_SCENE_MAX_SLABS
@@ -22,7 +23,7 @@ struct gl_context {
     EGLDisplay dpy;
     EGLContext ctx;
     EGLSurface surf;
-    GLuint prog, vao, lut, plans;
+    GLuint prog, vao, lut, plans, subbands, material; /* subbands: made for the first dispersive scene */
     biref_spectral *sp; /* the table's source and constants, kept for the uniforms */
     char desc[256];
 };
@@ -235,6 +236,8 @@ void gl_context_destroy(gl_context *g)
         if (g->prog) glDeleteProgram(g->prog);
         if (g->lut) glDeleteTextures(1, &g->lut);
         if (g->plans) glDeleteTextures(1, &g->plans);
+        if (g->subbands) glDeleteTextures(1, &g->subbands);
+        if (g->material) glDeleteTextures(1, &g->material);
         if (g->vao) glDeleteVertexArrays(1, &g->vao);
     }
     release_context(g);
@@ -247,6 +250,60 @@ void gl_context_destroy(gl_context *g)
 }
 
 const char *gl_context_description(const gl_context *g) { return g->desc; }
+
+/* An RGBA float texture of nearest texels (*tex made on the first call, refilled after). */
+static void float_texture(GLuint *tex, int width, int height, const float *texels)
+{
+    if (!*tex) glGenTextures(1, tex);
+    glBindTexture(GL_TEXTURE_2D, *tex);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, texels);
+}
+
+/* The scene's dispersive materials (biref_gl_scene_materials) and, for the first scene that has
+ * one, the sub-band tables; a scene without one gets a texel of zeros (never read). */
+static biref_status upload_materials(gl_context *g, const biref_scene *scene, char *msg, size_t msg_len)
+{
+    biref_gl_material_info mi;
+    biref_gl_scene_materials(scene, g->sp, &mi, NULL);
+    if (mi.dispersive && !g->subbands) {
+        biref_gl_subband_info si;
+        biref_gl_subband_table(g->sp, &si, NULL);
+        float *t = malloc((size_t)si.width * si.height * 4 * sizeof *t);
+        if (!t || biref_gl_subband_table(g->sp, &si, t) != BIREF_OK) {
+            free(t);
+            return fail(msg, msg_len, "out of memory for the sub-band tables");
+        }
+        float_texture(&g->subbands, si.width, si.height, t);
+        free(t);
+    }
+    const float zero[4] = {0, 0, 0, 0};
+    if (!mi.dispersive) {
+        float_texture(&g->material, 1, 1, zero);
+        if (!g->subbands) float_texture(&g->subbands, 1, 1, zero);
+        return glGetError() == GL_NO_ERROR ? BIREF_OK : fail(msg, msg_len, "OpenGL: cannot create the material textures");
+    }
+    float *t = malloc((size_t)mi.width * mi.height * 4 * sizeof *t);
+    if (!t) return fail(msg, msg_len, "out of memory for the materials' indices");
+    biref_status s = biref_gl_scene_materials(scene, g->sp, &mi, t);
+    if (s == BIREF_OK) float_texture(&g->material, mi.width, mi.height, t);
+    free(t);
+    if (s != BIREF_OK) {
+        /* The CPU renderer's check and message (slabs[i].material: why). */
+        biref_gl_table_info ti;
+        biref_gl_table(g->sp, &ti, NULL);
+        char why[BIREF_MSG_SIZE] = "unphysical within the band";
+        for (int i = 0; i < scene->n_slabs; i++)
+            if (scene->slabs[i].material &&
+                biref_material_check_band(scene->slabs[i].material, ti.lambda_min_nm, ti.lambda_max_nm, why,
+                                          sizeof why) != BIREF_OK)
+                return fail(msg, msg_len, "slabs[%d].material: %s", i, why);
+        return fail(msg, msg_len, "a slab's material: %s", why);
+    }
+    return glGetError() == GL_NO_ERROR ? BIREF_OK : fail(msg, msg_len, "OpenGL: cannot create the material textures");
+}
 
 static void set_uniform(void *user, const char *name, int comps, int count, const float *v)
 {
@@ -283,14 +340,18 @@ biref_status gl_context_render(gl_context *g, const biref_scene *scene, float *x
         s = fail(msg, msg_len, "OpenGL: cannot render into a %dx%d float target", W, H);
         goto done;
     }
+    if ((s = upload_materials(g, scene, msg, msg_len)) != BIREF_OK) goto done;
     glUseProgram(g->prog);
     biref_gl_scene_uniforms(scene, g->sp, set_uniform, &g->prog);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, g->lut);
-    glUniform1i(glGetUniformLocation(g->prog, "u_lut"), 0);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, g->plans);
-    glUniform1i(glGetUniformLocation(g->prog, "u_plans"), 1);
+    const struct {
+        GLuint tex;
+        const char *name;
+    } samplers[] = {{g->lut, "u_lut"}, {g->plans, "u_plans"}, {g->subbands, "u_subbands"}, {g->material, "u_material"}};
+    for (int i = 0; i < 4; i++) {
+        glActiveTexture(GL_TEXTURE0 + (GLenum)i);
+        glBindTexture(GL_TEXTURE_2D, samplers[i].tex);
+        glUniform1i(glGetUniformLocation(g->prog, samplers[i].name), i);
+    }
     glActiveTexture(GL_TEXTURE0);
     glBindVertexArray(g->vao);
     glViewport(0, 0, W, H);

@@ -8,7 +8,8 @@
  *   #define BIREF_FRAGMENT        the scene ray caster (fragment stage)
  * plus BIREF_MAX_SLABS / BIREF_MAX_PANELS (array sizes) and, for a display, BIREF_OUTPUT_SRGB
  * (8-bit sRGB out instead of linear XYZ). Without BIREF_SCENE only the per-hit-point part is
- * compiled: paste it into another renderer and call biref_shade_slab (docs/GPU.md).
+ * compiled: paste it into another renderer and call biref_shade_slab (docs/GPU.md); with
+ * BIREF_MATERIALS also biref_shade_material (dispersive materials; two more samplers).
  *
  * Everything is single precision. Where double precision is needed on the CPU, the shader
  * computes differences directly instead of subtracting large numbers (docs/GPU.md):
@@ -63,6 +64,46 @@ vec2 cycles_exp(float x)
     return vec2(cos(a), sin(a));
 }
 
+/* Where 0 <= D <= d_max falls between the table's nodes: node m, the Hermite weights and the
+ * carrier (the node's, exported in double precision, times a rotation below one step). */
+struct TableNodes {
+    int m;
+    vec4 h; /* h00, step h10, h01, step h11 */
+    vec2 carrier;
+};
+
+TableNodes table_nodes(float D)
+{
+    TableNodes tn;
+    float step_nm = u_lut_grid.x;
+    float x = D / step_nm;
+    tn.m = min(int(x), int(u_lut_grid.y) - 2);
+    float t = x - float(tn.m), t2 = t * t, t3 = t2 * t;
+    tn.h = vec4(2.0 * t3 - 3.0 * t2 + 1.0, step_nm * (t3 - 2.0 * t2 + t), -2.0 * t3 + 3.0 * t2, step_nm * (t3 - t2));
+    vec2 node = texelFetch(u_lut, ivec2(tn.m, 3), 0).xy;
+    float a = 2.0 * BIREF_PI * u_lut_band.x * (D - float(tn.m) * step_nm);
+    tn.carrier = cmul(node, vec2(cos(a), sin(a)));
+    return tn;
+}
+
+/* One band's value from its texels (re, im, dre/dD, dim/dD) at nodes m and m + 1. */
+vec2 table_value(TableNodes tn, vec4 A, vec4 B)
+{
+    return cmul(tn.carrier, tn.h.x * A.xy + tn.h.y * A.zw + tn.h.z * B.xy + tn.h.w * B.zw);
+}
+
+/* The first moment in k of the same, S(k e^{ikD}) = -i d/dD S(e^{ikD}): the carrier times
+ * (2 pi nu_c F - i F') (spectral_table_eval_moment). */
+vec2 table_moment(TableNodes tn, float D, vec4 A, vec4 B)
+{
+    float step_nm = u_lut_grid.x, t = D / step_nm - float(tn.m), t2 = t * t;
+    float g00 = (6.0 * t2 - 6.0 * t) / step_nm, g10 = 3.0 * t2 - 4.0 * t + 1.0, g11 = 3.0 * t2 - 2.0 * t;
+    vec2 F = tn.h.x * A.xy + tn.h.y * A.zw + tn.h.z * B.xy + tn.h.w * B.zw;
+    vec2 dF = g00 * A.xy + g10 * A.zw - g00 * B.xy + g11 * B.zw;
+    float kc = 2.0 * BIREF_PI * u_lut_band.x;
+    return cmul(tn.carrier, vec2(kc * F.x + dF.y, kc * F.y - dF.x));
+}
+
 /* S(cos(2 pi D / λ), Λ_j) and S(sin(...)) for the three bands. */
 void biref_phase_integrals(float D, out vec3 c, out vec3 s)
 {
@@ -73,7 +114,7 @@ void biref_phase_integrals(float D, out vec3 c, out vec3 s)
     }
     c = vec3(0.0);
     s = vec3(0.0);
-    float step_nm = u_lut_grid.x, d_max = u_lut_grid.z, d_far = u_lut_grid.w;
+    float d_max = u_lut_grid.z, d_far = u_lut_grid.w;
     if (D > d_far) return;
     if (D > d_max) {
         /* Endpoint asymptotics: S(e^{ikD}) ~ i/(2 pi D) [Λ λ^2 e^{2 pi i D/λ}] from λmin to λmax. */
@@ -86,19 +127,10 @@ void biref_phase_integrals(float D, out vec3 c, out vec3 s)
         s = sgn * e * re;
         return;
     }
-    float x = D / step_nm;
-    int m = min(int(x), int(u_lut_grid.y) - 2);
-    float t = x - float(m), t2 = t * t, t3 = t2 * t;
-    float h00 = 2.0 * t3 - 3.0 * t2 + 1.0, h10 = t3 - 2.0 * t2 + t, h01 = -2.0 * t3 + 3.0 * t2, h11 = t3 - t2;
-    /* Carrier: the node's (exported in double precision) times a rotation below one step. */
-    vec2 node = texelFetch(u_lut, ivec2(m, 3), 0).xy;
-    float a = 2.0 * BIREF_PI * u_lut_band.x * (D - float(m) * step_nm);
-    vec2 carrier = cmul(node, vec2(cos(a), sin(a)));
+    TableNodes tn = table_nodes(D);
     vec3 fre, fim;
     for (int j = 0; j < 3; j++) {
-        vec4 A = texelFetch(u_lut, ivec2(m, j), 0), B = texelFetch(u_lut, ivec2(m + 1, j), 0);
-        vec2 f = h00 * A.xy + h10 * step_nm * A.zw + h01 * B.xy + h11 * step_nm * B.zw;
-        vec2 v = cmul(carrier, f);
+        vec2 v = table_value(tn, texelFetch(u_lut, ivec2(tn.m, j), 0), texelFetch(u_lut, ivec2(tn.m + 1, j), 0));
         fre[j] = v.x;
         fim[j] = v.y;
     }
@@ -252,6 +284,7 @@ bool solve4(inout vec2 A[16], inout vec2 B[16])
     float scale = 0.0;
     for (int i = 0; i < 16; i++) scale = max(scale, cl1(A[i]));
     vec2 invd[4];
+    bool singular = false;
     for (int c = 0; c < 4; c++) {
         int p = c;
         float best = cl1(A[5 * c]);
@@ -262,7 +295,9 @@ bool solve4(inout vec2 A[16], inout vec2 B[16])
                 p = r;
             }
         }
-        if (!(best > 1e-7 * scale)) return false;
+        /* No early return: inlined into the loops of the exact integrals, a return from inside
+         * this loop broke the enclosing loop under Mesa (llvmpipe 22.3). */
+        if (!(best > 1e-7 * scale)) singular = true;
         if (p != c) {
             for (int j = 0; j < 4; j++) {
                 vec2 t = A[4 * c + j];
@@ -288,7 +323,7 @@ bool solve4(inout vec2 A[16], inout vec2 B[16])
             B[4 * c + j] = cmul(s, invd[c]);
         }
     }
-    return true;
+    return !singular;
 }
 
 bool interface_from_modes(Modes up, Modes lo, float K, out Iface o)
@@ -368,7 +403,7 @@ SlabState slab_flip(SlabState s)
 /* ------------------------------------------------------------------------------------------ */
 /* Polarisation is general: incident coherency matrix C (real symmetric, (C00, C01, C11)) in the
  * incident wave's (s, p) basis and analyzer P (real, [in][out] = (P00, P01, P10, P11)) in the
- * outgoing wave's basis. For the paper's model C = diag(s, p), P = diag(mask) and every term
+ * outgoing wave's basis. For the paper's model C = diag(s, p), P = diag(sqrt(mask)) and every term
  * below equals the C library's biref_analytic_terms mixed by biref_spectrum_mix: the pair
  * coefficients factor into an entry part Ein (paths share their first leg's input) and an exit
  * part Xout (docs/GPU.md). */
@@ -560,7 +595,7 @@ void physical_limit(vec3 E[8], inout vec3 X[8])
  * faces: the path picture fails, so the closed form is integrated with a midpoint plan of the
  * library (48 * 2^i samples). Constants as in src/spectral/coherent.c. */
 uniform highp sampler2D u_plans; /* texel n: (lambda_nm, w_x, w_y, w_z), plan i from 48 (2^i - 1) */
-uniform vec4 u_plan_grid;        /* texture width, number of plans, samples of plan 0, unused */
+uniform vec4 u_plan_grid;        /* texture width, number of plans, samples of plan 0, rows per slab of u_material */
 const float EVANESCENT_COUPLING = 1e-7;
 const float COHERENT_ROUND_TRIP_NM = 10000.0;
 const float ORDER_AMPLITUDE_FLOOR = 1e-4;
@@ -587,25 +622,14 @@ float round_trip_norm(SlabState st, float k)
     return worst;
 }
 
-/* Number of samples of the plan that integrates this slab exactly, or 0 outside the regime. */
-int coherent_samples(SlabState st)
+/* Number of samples of the plan that integrates this slab state exactly
+ * (biref_resolving_plan). */
+int plan_samples(SlabState st)
 {
     float lmin = u_lut_band.y, lmax = u_lut_band.z, k_lo = 2.0 * BIREF_PI / lmax;
-    bool coupled = false;
-    for (int m = 0; m < 2; m++) {
-        float im_d = st.od[m].y, im_u = st.ou[m].y;
-        if ((im_d != 0.0 && exp(-k_lo * abs(im_d)) > EVANESCENT_COUPLING) ||
-            (im_u != 0.0 && exp(-k_lo * abs(im_u)) > EVANESCENT_COUPLING))
-            coupled = true;
-    }
-    float rt_min = 1e30, rt_max = 0.0;
+    float rt_max = 0.0;
     for (int x = 0; x < 2; x++)
-        for (int y = 0; y < 2; y++) {
-            vec2 rt = st.od[x] + st.ou[y];
-            rt_max = max(rt_max, abs(rt.x));
-            if (exp(-k_lo * abs(rt.y)) > EVANESCENT_COUPLING) rt_min = min(rt_min, abs(rt.x));
-        }
-    if (!coupled && !(rt_min < COHERENT_ROUND_TRIP_NM)) return 0;
+        for (int y = 0; y < 2; y++) rt_max = max(rt_max, abs(st.od[x].x + st.ou[y].x));
     float rho = round_trip_norm(st, k_lo), orders;
     if (!(rho < 1.0 - 1e-7))
         orders = 1e9;
@@ -620,6 +644,26 @@ int coherent_samples(SlabState st)
         n *= 2;
     }
     return n;
+}
+
+/* Is this slab state in the coherent regime (biref_coherent_plan)? */
+bool coherent_regime(SlabState st)
+{
+    float k_lo = 2.0 * BIREF_PI / u_lut_band.z;
+    bool coupled = false;
+    for (int m = 0; m < 2; m++) {
+        float im_d = st.od[m].y, im_u = st.ou[m].y;
+        if ((im_d != 0.0 && exp(-k_lo * abs(im_d)) > EVANESCENT_COUPLING) ||
+            (im_u != 0.0 && exp(-k_lo * abs(im_u)) > EVANESCENT_COUPLING))
+            coupled = true;
+    }
+    float rt_min = 1e30;
+    for (int x = 0; x < 2; x++)
+        for (int y = 0; y < 2; y++) {
+            vec2 rt = st.od[x] + st.ou[y];
+            if (exp(-k_lo * abs(rt.y)) > EVANESCENT_COUPLING) rt_min = min(rt_min, abs(rt.x));
+        }
+    return coupled || rt_min < COHERENT_ROUND_TRIP_NM;
 }
 
 /* e^{2 pi i opl / lambda} for a complex optical path, the cycles reduced before cos/sin. */
@@ -647,65 +691,67 @@ float detected(vec2 J[4], vec3 C, vec4 P)
            2.0 * C.y * (cmulc(JP[2], JP[0]).x + cmulc(JP[3], JP[1]).x);
 }
 
-/* Midpoint integral of the closed form (eq. 17 and its reflection analogue) for one direction. */
-vec3 coherent_integral(SlabState st, int which, vec3 C, vec4 P, int samples)
+/* The closed form (eq. 17 and its reflection analogue) for one direction at one wavelength:
+ * the detected intensity. */
+float coherent_detected(SlabState st, int which, vec3 C, vec4 P, float lambda)
+{
+    vec2 pd[2], pu[2];
+    for (int m = 0; m < 2; m++) {
+        pd[m] = leg_phase(st.od[m], lambda);
+        pu[m] = leg_phase(st.ou[m], lambda);
+    }
+    /* down_r12 = P_down r12, up_r10 = P_up r10, D = down_r12 up_r10 */
+    vec2 dr[4], ur[4], D[4];
+    for (int x = 0; x < 2; x++)
+        for (int y = 0; y < 2; y++) {
+            dr[2 * x + y] = cmul(pd[x], st.bot.rd[2 * x + y]);
+            ur[2 * x + y] = cmul(pu[x], st.top.ru[2 * x + y]);
+        }
+    c2mul(dr, ur, D);
+    /* (I - D)^{-1} */
+    vec2 a = vec2(1.0, 0.0) - D[0], b = -D[1], c = -D[2], d = vec2(1.0, 0.0) - D[3];
+    vec2 idet = cinv(cmul(a, d) - cmul(b, c));
+    vec2 inv[4], entry[4], J[4], tmp[4];
+    inv[0] = cmul(d, idet);
+    inv[1] = -cmul(b, idet);
+    inv[2] = -cmul(c, idet);
+    inv[3] = cmul(a, idet);
+    c2mul(st.top.td, inv, entry);
+    if (which == 0) {
+        vec2 out_[4];
+        for (int x = 0; x < 2; x++)
+            for (int o = 0; o < 2; o++) out_[2 * x + o] = cmul(pd[x], st.bot.td[2 * x + o]);
+        c2mul(entry, out_, J);
+    } else {
+        vec2 back[4], up_t10[4];
+        for (int y = 0; y < 2; y++)
+            for (int o = 0; o < 2; o++) up_t10[2 * y + o] = cmul(pu[y], st.top.tu[2 * y + o]);
+        c2mul(dr, up_t10, back);
+        c2mul(entry, back, tmp);
+        for (int k = 0; k < 4; k++) J[k] = st.top.rd[k] + tmp[k];
+    }
+    return detected(J, C, P);
+}
+
+/* The first texel of the plan of this many samples in the plans' texture layout. */
+int plan_base(int samples)
 {
     int first = samples / int(u_plan_grid.z + 0.5) - 1; /* 48 (2^i - 1) */
-    int base = int(u_plan_grid.z + 0.5) * first, width = int(u_plan_grid.x + 0.5);
-    vec3 acc = vec3(0.0);
-    for (int n = 0; n < samples; n++) {
-        int t = base + n;
-        vec4 s = texelFetch(u_plans, ivec2(t - (t / width) * width, t / width), 0);
-        vec2 pd[2], pu[2];
-        for (int m = 0; m < 2; m++) {
-            pd[m] = leg_phase(st.od[m], s.x);
-            pu[m] = leg_phase(st.ou[m], s.x);
-        }
-        /* down_r12 = P_down r12, up_r10 = P_up r10, D = down_r12 up_r10 */
-        vec2 dr[4], ur[4], D[4];
-        for (int x = 0; x < 2; x++)
-            for (int y = 0; y < 2; y++) {
-                dr[2 * x + y] = cmul(pd[x], st.bot.rd[2 * x + y]);
-                ur[2 * x + y] = cmul(pu[x], st.top.ru[2 * x + y]);
-            }
-        c2mul(dr, ur, D);
-        /* (I - D)^{-1} */
-        vec2 a = vec2(1.0, 0.0) - D[0], b = -D[1], c = -D[2], d = vec2(1.0, 0.0) - D[3];
-        vec2 idet = cinv(cmul(a, d) - cmul(b, c));
-        vec2 inv[4], entry[4], J[4], tmp[4];
-        inv[0] = cmul(d, idet);
-        inv[1] = -cmul(b, idet);
-        inv[2] = -cmul(c, idet);
-        inv[3] = cmul(a, idet);
-        c2mul(st.top.td, inv, entry);
-        if (which == 0) {
-            vec2 out_[4];
-            for (int x = 0; x < 2; x++)
-                for (int o = 0; o < 2; o++) out_[2 * x + o] = cmul(pd[x], st.bot.td[2 * x + o]);
-            c2mul(entry, out_, J);
-        } else {
-            vec2 back[4], up_t10[4];
-            for (int y = 0; y < 2; y++)
-                for (int o = 0; o < 2; o++) up_t10[2 * y + o] = cmul(pu[y], st.top.tu[2 * y + o]);
-            c2mul(dr, up_t10, back);
-            c2mul(entry, back, tmp);
-            for (int k = 0; k < 4; k++) J[k] = st.top.rd[k] + tmp[k];
-        }
-        acc += s.yzw * detected(J, C, P);
-    }
-    return acc;
+    return int(u_plan_grid.z + 0.5) * first;
+}
+
+ivec2 plan_texel(int t)
+{
+    int width = int(u_plan_grid.x + 0.5);
+    return ivec2(t - (t / width) * width, t / width);
 }
 
 /* One slab state's colour for light in direction `which` (0 transmission, 1 reflection), as the
  * C library's integrator: the coherent regime exactly; else eq. 26 kept physical, which for the
  * paper's light model needs both directions (the energy balance) and the four s/p pairs, and for
  * world-fixed polarizers moves a negative result towards the incoherent path energy E. */
-vec3 slab_colour(SlabState st, int which, vec3 C, vec4 P, bool paper_model)
+vec3 slab_colour_phases(SlabState st, int which, vec3 C, vec4 P, bool paper_model, TransPhases tp, ReflPhases rp)
 {
-    int samples = coherent_samples(st);
-    if (samples > 0) return coherent_integral(st, which, C, P, samples);
-    TransPhases tp = transmission_phases(st);
-    ReflPhases rp = reflection_phases(st);
     vec3 E, H;
     if (!paper_model) {
         if (which == 0)
@@ -734,10 +780,10 @@ vec3 slab_colour(SlabState st, int which, vec3 C, vec4 P, bool paper_model)
         Xs[n] = E + 2.0 * H; /* eqs. 25-26 */
     }
     physical_limit(Es, Xs);
-    /* biref_spectrum_mix: sum_i w_i sum_o mask_o X[i][o] (C = diag(w), P = diag(mask)). */
+    /* biref_spectrum_mix: sum_i w_i sum_o mask_o X[i][o] (C = diag(w), P = diag(sqrt(mask))). */
     vec3 r = vec3(0.0);
     for (int i = 0; i < 2; i++)
-        for (int o = 0; o < 2; o++) r += (i == 0 ? C.x : C.z) * (o == 0 ? P.x : P.w) * Xs[4 * which + 2 * i + o];
+        for (int o = 0; o < 2; o++) r += (i == 0 ? C.x : C.z) * (o == 0 ? P.x * P.x : P.w * P.w) * Xs[4 * which + 2 * i + o];
     return r;
 }
 
@@ -751,7 +797,8 @@ vec3 slab_colour(SlabState st, int which, vec3 C, vec4 P, bool paper_model)
  *   axis:    unit optic axis in world space
  *   eta:     (eta_o, eta_e, thickness in nm), eta_i the surrounding index
  *   pol:     x: 0 = s/p fractions (pol_w), 1 = linear polarizer along pol_dir (world space)
- *   filter:  x: 0 = s/p mask (mask), 1 = linear analyzer along filter_dir (world space)
+ *   filter:  x: 0 = s/p mask (mask: the power fractions passed, as biref_light_sp), 1 = linear
+ *            analyzer along filter_dir (world space)
  * T is the colour of light arriving from behind along view, R of light arriving along the
  * mirror direction. Returns false when an interface solve failed (grazing breakdown). */
 struct BirefLight {
@@ -779,7 +826,8 @@ vec4 analyzer(BirefLight L, vec3 s, vec3 p)
         vec2 u = l > 0.0 ? a / l : vec2(0.0);
         return vec4(a.x * u.x, a.x * u.y, a.y * u.x, a.y * u.y);
     }
-    return vec4(L.mask.x, 0.0, 0.0, L.mask.y);
+    /* mask is a power fraction (biref_light_sp): the analyzer acts on amplitudes with its root. */
+    return vec4(sqrt(L.mask.x), 0.0, 0.0, sqrt(L.mask.y));
 }
 
 /* sum_ijk C_ij P_ik P_jk: the light passed unchanged through the analyzer. */
@@ -788,13 +836,23 @@ float passthrough(vec3 C, vec4 P)
     return C.x * (P.x * P.x + P.y * P.y) + 2.0 * C.y * (P.x * P.z + P.y * P.w) + C.z * (P.z * P.z + P.w * P.w);
 }
 
-bool biref_shade_slab(vec3 view, vec3 normal, vec3 tangent, vec3 axis, vec3 eta, float eta_i, BirefLight L,
-                      out vec3 T, out vec3 R)
+/* The frames of one hit (docs/SCENES.md): the optic axis in the transmission frame, the light
+ * and the analyzer in each direction's wave bases. */
+struct HitFrame {
+    float sin_t;
+    vec3 A;
+    vec3 CT, CR;
+    vec4 PT, PR;
+    bool paper_model;
+};
+
+HitFrame hit_frame(vec3 view, vec3 normal, vec3 tangent, vec3 axis, BirefLight L)
 {
+    HitFrame f;
     float dn = dot(view, normal);
     float cos_t = min(1.0, abs(dn));
     /* theta <= 90 deg - 1e-7 rad, as the C renderer clamps grazing rays */
-    float sin_t = min(sqrt(max(0.0, 1.0 - cos_t * cos_t)), 1.0 - 5e-15);
+    f.sin_t = min(sqrt(max(0.0, 1.0 - cos_t * cos_t)), 1.0 - 5e-15);
     /* Paper frame of this ray (docs/SCENES.md): transmission y = normal away from the camera,
      * z = tangential part of the view ray, x = y x z; the reflection frame has x_R = -x_T. */
     vec3 yT = dn < 0.0 ? -normal : normal;
@@ -804,36 +862,462 @@ bool biref_shade_slab(vec3 view, vec3 normal, vec3 tangent, vec3 axis, vec3 eta,
     vec3 xT = cross(yT, z), xR = -xT;
     vec3 mirror = view - 2.0 * dn * normal;
     vec3 k_view = -view, k_refl_in = -mirror;
-    vec3 A = vec3(dot(axis, xT), dot(axis, yT), dot(axis, z));
-    SlabState stT;
-    bool ok = slab_prepare(eta.x, eta.y, A, eta.z, eta_i, sin_t, stT);
-    SlabState stR = slab_flip(stT);
+    f.A = vec3(dot(axis, xT), dot(axis, yT), dot(axis, z));
     /* s = x of each frame for both waves, p = k x s. */
-    vec3 CT = light_coherency(L, xT, cross(k_view, xT));
-    vec4 PT = analyzer(L, xT, cross(k_view, xT));
-    vec3 CR = light_coherency(L, xR, cross(k_refl_in, xR));
-    vec4 PR = analyzer(L, xR, cross(k_view, xR));
-    bool paper_model = L.pol_linear < 0.5 && L.filter_linear < 0.5;
-    /* A loop rather than two calls, its bound hidden likewise: one copy of slab_colour. */
-    int evaluations = 2 + int(u_lut_band.w);
-    for (int k = 0; k < evaluations; k++) {
-        SlabState st = stR; /* WebGL allows no ?: on structures */
-        if (k == 0) st = stT;
-        vec3 c = slab_colour(st, k, k == 0 ? CT : CR, k == 0 ? PT : PR, paper_model);
-        if (k == 0)
-            T = c;
-        else
-            R = c;
-    }
+    f.CT = light_coherency(L, xT, cross(k_view, xT));
+    f.PT = analyzer(L, xT, cross(k_view, xT));
+    f.CR = light_coherency(L, xR, cross(k_refl_in, xR));
+    f.PR = analyzer(L, xR, cross(k_view, xR));
+    f.paper_model = L.pol_linear < 0.5 && L.filter_linear < 0.5;
+    return f;
+}
+
+/* A failed solve or a non-finite colour: a perfect mirror seen through the filter, as the C
+ * renderer's fallback. */
+bool hit_result(bool ok, HitFrame f, inout vec3 T, inout vec3 R)
+{
     bool finite = !(any(isnan(T)) || any(isinf(T)) || any(isnan(R)) || any(isinf(R)));
     if (!ok || !finite) {
-        /* A perfect mirror seen through the filter, as the C renderer's fallback. */
         T = vec3(0.0);
-        R = vec3(passthrough(CR, PR));
+        R = vec3(passthrough(f.CR, f.PR));
         return false;
     }
     return true;
 }
+
+/* ------------------------------------------------------------------------------------------ */
+/* Dispersive materials (docs/PHYSICS.md §7; src/spectral/analytic_dispersive.c,               */
+/* leg_dispersion.c): per band the modes and Fresnel coefficients at the band's centroid, each  */
+/* lag's phase on sub-band tangents                                                             */
+/* ------------------------------------------------------------------------------------------ */
+/* biref_gl_subband_table: table t = 2^L - 2 + b (level L, sub-band b) band j in row 3 t + j.
+ * biref_gl_scene_materials: per slab u_plan_grid.w rows, first the indices (n_o, n_e, dn_o/dλ,
+ * dn_e/dλ) at the plans' samples (texel for texel as u_plans), then one row with the same at the
+ * sub-band points (texels 0-64), at the three band centroids (65-67) and at band j's Gauss node i
+ * (68 + 2 j + i). */
+#if defined(BIREF_SCENE) || defined(BIREF_MATERIALS)
+uniform highp sampler2D u_subbands;
+uniform highp sampler2D u_material;
+#define BIREF_MATERIAL_TEXEL(xy) texelFetch(u_material, xy, 0)
+#define BIREF_SUBBAND_TEXEL(xy) texelFetch(u_subbands, xy, 0)
+#else
+/* Constant indices only (an embedder without BIREF_MATERIALS): no sampler to bind. */
+#define BIREF_MATERIAL_TEXEL(xy) vec4(0.0)
+#define BIREF_SUBBAND_TEXEL(xy) vec4(0.0)
+#endif
+const int SUBBAND_LEVELS = 5;         /* BIREF_SUBBAND_LEVELS */
+const int SUBBAND_POINTS = 65;        /* BIREF_SUBBAND_POINTS: 2 * 2^levels + 1 */
+const float SUBBAND_PHASE_TOL = 0.005; /* rad, BIREF_SUBBAND_PHASE_TOL */
+const float TANGENT_BREAK_RAD = 0.25;  /* analytic_dispersive.c: BREAK_RAD */
+
+/* Pairs (value, d/dλ). */
+vec2 dmul(vec2 a, vec2 b) { return vec2(a.x * b.x, a.x * b.y + a.y * b.x); }
+vec2 ddiv(vec2 a, vec2 b) { return vec2(a.x / b.x, (a.y * b.x - a.x * b.y) / (b.x * b.x)); }
+vec2 dsqrt(vec2 a)
+{
+    float r = sqrt(a.x);
+    return vec2(r, r > 0.0 ? 0.5 * a.y / r : 0.0);
+}
+
+/* The real parts of the legs' optical paths at one wavelength and their derivatives in λ, from
+ * the indices n = (n_o, n_e, dn_o/dλ, dn_e/dλ): the o leg (down and up alike), and e - o down
+ * and up, the latter from q_e^2 - q_o^2 as uniaxial_modes (no cancellation). */
+void leg_paths(vec4 n, vec3 A, float K, float d, out vec2 Lo, out vec2 Dd, out vec2 Du)
+{
+    float al = A.x, be = A.y, ga = A.z;
+    vec2 eo = vec2(n.x * n.x, 2.0 * n.x * n.z), ee = vec2(n.y * n.y, 2.0 * n.y * n.w), de = ee - eo;
+    bool o_prop = eo.x > K * K;
+    vec2 qo = o_prop ? dsqrt(eo - vec2(K * K, 0.0)) : vec2(0.0);
+    vec2 a = eo + be * be * de;
+    vec2 lin = be * ga * K * de;
+    vec2 disc = dmul(ee, a) + K * K * (al * al * de - ee);
+    vec2 root = disc.x > 0.0 ? dsqrt(dmul(eo, disc)) : vec2(0.0);
+    vec2 qed = ddiv(lin - root, a), qeu = ddiv(lin + root, a); /* Re q_e down, up */
+    Lo = d * qo;
+    if (o_prop && disc.x > 0.0) {
+        vec2 base = (1.0 - be * be) * eo + vec2(K * K * (be * be - ga * ga), 0.0);
+        vec2 numd = ddiv(dmul(de, 2.0 * be * ga * K * qed + base), a);
+        vec2 numu = ddiv(dmul(de, 2.0 * be * ga * K * qeu + base), a);
+        Dd = -d * ddiv(numd, qed - qo); /* q_o down = -qo */
+        Du = d * ddiv(numu, qeu + qo);
+    } else {
+        Dd = -d * qed - Lo;
+        Du = d * qeu - Lo;
+    }
+}
+
+/* Per sample point p of the hit's legs: group paths opl - λ dopl/dλ and dopl/dλ of (o, e - o
+ * down, e - o up). A lag with leg counts (down o, down e, up o, up e) weighs them by
+ * w = (all legs, down e, up e). */
+vec3 g_group[SUBBAND_POINTS], g_slope[SUBBAND_POINTS];
+
+float subband_k(int p)
+{
+    float klo = 2.0 * BIREF_PI / u_lut_band.z, khi = 2.0 * BIREF_PI / u_lut_band.y;
+    return sqrt(klo * klo + (khi * khi - klo * klo) * float(p) / float(SUBBAND_POINTS - 1));
+}
+
+/* The number of sample points, from a uniform (u_lut_band.w is 0) so that compilers keep the
+ * loops over them rolled. */
+int subband_points() { return SUBBAND_POINTS + int(u_lut_band.w); }
+
+void sample_legs(int row, vec3 A, float K, float d)
+{
+    for (int p = 0; p < subband_points(); p++) {
+        float lambda = 2.0 * BIREF_PI / subband_k(p);
+        vec2 Lo, Dd, Du;
+        leg_paths(BIREF_MATERIAL_TEXEL(ivec2(p, row)), A, K, d, Lo, Dd, Du);
+        g_slope[p] = vec3(Lo.y, Dd.y, Du.y);
+        g_group[p] = vec3(Lo.x, Dd.x, Du.x) - lambda * g_slope[p];
+    }
+}
+
+/* The largest distance of the lag's phase Φ = k G + ψ from its tangents at the sub-bands'
+ * midpoints, at their edges (leg_dispersion.c: level_residual). */
+float level_residual(float G[SUBBAND_POINTS], float psi[SUBBAND_POINTS], int level)
+{
+    int span = (SUBBAND_POINTS - 1) >> level;
+    float worst = 0.0;
+    for (int a = 0; a + span < SUBBAND_POINTS; a += span) {
+        int m = a + span / 2, e = a + span;
+        worst = max(worst, abs(subband_k(a) * (G[a] - G[m]) + psi[a] - psi[m]));
+        worst = max(worst, abs(subband_k(e) * (G[e] - G[m]) + psi[e] - psi[m]));
+    }
+    return worst;
+}
+
+/* Table t of the sub-bands (t < 0: the band's own, u_lut) at D (|D| <= d_max), the three bands
+ * as (re, im), and its first moment in k likewise (k real: both conjugate for D < 0). */
+void subband_eval(int t, float D, out vec3 re, out vec3 im, out vec3 kre, out vec3 kim)
+{
+    float a = abs(D);
+    TableNodes tn = table_nodes(a);
+    for (int j = 0; j < 3; j++) {
+        vec4 A, B;
+        if (t < 0) {
+            A = texelFetch(u_lut, ivec2(tn.m, j), 0);
+            B = texelFetch(u_lut, ivec2(tn.m + 1, j), 0);
+        } else {
+            A = BIREF_SUBBAND_TEXEL(ivec2(tn.m, 3 * t + j));
+            B = BIREF_SUBBAND_TEXEL(ivec2(tn.m + 1, 3 * t + j));
+        }
+        vec2 v = table_value(tn, A, B), vk = table_moment(tn, a, A, B);
+        float sg = D < 0.0 ? -1.0 : 1.0; /* S(e^{-ikD}) = conj S(e^{ikD}) */
+        re[j] = v.x;
+        im[j] = sg * v.y;
+        kre[j] = vk.x;
+        kim[j] = sg * vk.y;
+    }
+}
+
+/* The amplitudes' wavenumbers (docs/PHYSICS.md §7): band j's two Gauss nodes k[j][i] and their
+ * masses S(ℓ_i, Λ_j), ℓ_i the linear weight that is 1 at node i and 0 at the other
+ * (biref_gl_scene_uniforms, from biref_band_nodes). */
+uniform vec3 u_band_node_k[2];
+uniform vec3 u_band_node_mass[2];
+
+/* The lag's integrals under node i's weight, S(ℓ_i e^{iΦ}) / S(ℓ_i), from m0 = S(e^{iΦ}) and
+ * m1 = S(k e^{iΦ}); beyond the tables (m1 unknown) the band's mean (biref_lag_node_integrals). */
+void node_integrals(int i, vec3 c0, vec3 s0, vec3 c1, vec3 s1, bool beyond, out vec3 c, out vec3 s)
+{
+    vec3 w = u_band_node_mass[i], wo = u_band_node_mass[1 - i], total = w + wo;
+    vec3 ko = u_band_node_k[1 - i], den = (u_band_node_k[i] - ko) * w;
+    for (int j = 0; j < 3; j++) {
+        if (!(w[j] > 0.0)) {
+            c[j] = 0.0;
+            s[j] = 0.0;
+        } else if (beyond || !(wo[j] > 0.0)) {
+            c[j] = c0[j] / total[j];
+            s[j] = s0[j] / total[j];
+        } else {
+            c[j] = (c1[j] - ko[j] * c0[j]) / den[j];
+            s[j] = (s1[j] - ko[j] * s0[j]) / den[j];
+        }
+    }
+}
+
+/* The lags' integrals under the nodes' weights: lag n, node i at index 2 n + i. */
+vec3 g_lag_c[18], g_lag_s[18];
+
+/* The lag weighted by w (biref_lag_integrals) into lag slot n; res: the largest phase error of
+ * the tangents at the level used. */
+void lag_integrals(vec3 w, int n, out float res)
+{
+    float G[SUBBAND_POINTS], psi[SUBBAND_POINTS]; /* psi in cycles: Φ - k G = 2 pi psi */
+    float psi_rad[SUBBAND_POINTS];
+    for (int p = 0; p < subband_points(); p++) {
+        G[p] = dot(w, g_group[p]);
+        psi[p] = dot(w, g_slope[p]);
+        psi_rad[p] = 2.0 * BIREF_PI * psi[p];
+    }
+    const int mid = (SUBBAND_POINTS - 1) / 2;
+    int level = 0;
+    res = level_residual(G, psi_rad, 0);
+    bool inside = res > SUBBAND_PHASE_TOL && abs(G[mid]) <= u_lut_grid.z;
+    for (int p = 1; p < subband_points() - 1; p++) inside = inside && abs(G[p]) <= u_lut_grid.z;
+    if (inside)
+        for (int l = 1; l <= SUBBAND_LEVELS + int(u_lut_band.w); l++) {
+            if (!(res > SUBBAND_PHASE_TOL)) break;
+            level = l;
+            res = level_residual(G, psi_rad, l);
+        }
+    /* m0 = S(e^{iΦ}), m1 = S(k e^{iΦ}) as (c, s) pairs. Level 0: the band's own table, which
+     * also covers the lags beyond the sub-band tables (there without m1). */
+    bool beyond = level == 0 && !(abs(G[mid]) <= u_lut_grid.z);
+    vec3 c0 = vec3(0.0), s0 = vec3(0.0), c1 = vec3(0.0), s1 = vec3(0.0), re, im, kre, kim;
+    int span = (SUBBAND_POINTS - 1) >> level;
+    for (int b = 0; b < (1 << level); b++) {
+        int m = b * span + span / 2;
+        if (beyond) {
+            biref_phase_integrals(G[m], re, im);
+            kre = vec3(0.0);
+            kim = vec3(0.0);
+        } else {
+            subband_eval(level == 0 ? -1 : (1 << level) - 2 + b, G[m], re, im, kre, kim);
+        }
+        vec2 rot = cycles_exp(psi[m]); /* the tangent's offset */
+        c0 += rot.x * re - rot.y * im;
+        s0 += rot.y * re + rot.x * im;
+        c1 += rot.x * kre - rot.y * kim;
+        s1 += rot.y * kre + rot.x * kim;
+    }
+    for (int i = 0; i < 2; i++) node_integrals(i, c0, s0, c1, s1, beyond, g_lag_c[2 * n + i], g_lag_s[2 * n + i]);
+}
+
+/* The lags of both faces' states (transmission-frame legs): 0 e - o down, 1 e - o up, 2 their
+ * sum, 3 their difference, 4 + 2 x + y the round trip (down x, up y), 8 = -(lag 3). */
+
+vec3 lag_weights(int i)
+{
+    if (i == 0) return vec3(0.0, 1.0, 0.0);
+    if (i == 1) return vec3(0.0, 0.0, 1.0);
+    if (i == 2) return vec3(0.0, 1.0, 1.0);
+    if (i == 3) return vec3(0.0, 1.0, -1.0);
+    return vec3(2.0, float((i - 4) / 2), float((i - 4) % 2));
+}
+
+/* The run's node, whose weight the lags are taken under. */
+int g_node;
+
+PhaseInt lag_phase(int i, float im_opd)
+{
+    PhaseInt p;
+    p.c = g_lag_c[2 * i + g_node];
+    p.s = g_lag_s[2 * i + g_node];
+    p.att = im_opd != 0.0 ? exp(-u_k_centroid * im_opd) : vec3(1.0);
+    return p;
+}
+
+/* transmission_phases and reflection_phases from the lags; flip: the state lit from the other
+ * face, whose down and up legs are the transmission frame's up and down legs. */
+TransPhases transmission_lags(SlabState st, bool flip)
+{
+    TransPhases ph;
+    ph.h0 = lag_phase(flip ? 1 : 0, st.od[1].y + st.od[0].y);
+    for (int y = 0; y < 2; y++)
+        for (int x2 = 0; x2 < 2; x2++) {
+            vec2 trip = st.ou[y] + st.od[x2];
+            ph.trip[2 * y + x2] = lag_phase(flip ? 4 + 2 * y + x2 : 4 + 2 * x2 + y, trip.y);
+        }
+    return ph;
+}
+
+ReflPhases reflection_lags(SlabState st, bool flip)
+{
+    ReflPhases ph;
+    for (int a = 0; a < 4; a++) {
+        int x = a / 2, y = a - 2 * x;
+        vec2 opl = st.od[x] + st.ou[y];
+        ph.p1[a] = lag_phase(flip ? 4 + 2 * y + x : a + 4, opl.y);
+    }
+    /* pairs (0,1) (0,2) (0,3) (1,2) (1,3) (2,3) */
+    int k = 0;
+    for (int a = 0; a < 4; a++)
+        for (int b = a + 1; b < 4; b++) {
+            int xa = a / 2, ya = a - 2 * xa, xb = b / 2, yb = b - 2 * xb;
+            float im = st.od[xb].y + st.od[xa].y + st.ou[yb].y + st.ou[ya].y;
+            int lag = xa == xb ? 1 : ya == yb ? 0 : ya == yb - 1 ? 2 : 3; /* up, down, both, difference */
+            if (flip) lag = lag == 0 ? 1 : lag == 1 ? 0 : lag == 3 ? 8 : 2;
+            ph.pair[k++] = lag_phase(lag, im);
+        }
+    return ph;
+}
+
+/* A dispersive state at one sample wavelength for the exact integral: the legs' optical paths
+ * with the material's indices there (eq. 2, complex where evanescent), the interfaces linear in
+ * k through the band states of the green and blue bands (the CPU prepares every sample's state
+ * anew; llvmpipe stops a shader's loops after 65535 iterations in all, which a 4x4 solve per
+ * sample exceeds: docs/GPU.md). */
+SlabState sample_state(SlabState st[9], vec2 n, float k, vec3 A, float K, float d)
+{
+    SlabState s = st[1];
+    float t = (k - u_k_centroid.y) / (u_k_centroid.z - u_k_centroid.y);
+    for (int i = 0; i < 4; i++) {
+        s.top.rd[i] += t * (st[2].top.rd[i] - st[1].top.rd[i]);
+        s.top.td[i] += t * (st[2].top.td[i] - st[1].top.td[i]);
+        s.top.ru[i] += t * (st[2].top.ru[i] - st[1].top.ru[i]);
+        s.top.tu[i] += t * (st[2].top.tu[i] - st[1].top.tu[i]);
+        s.bot.rd[i] += t * (st[2].bot.rd[i] - st[1].bot.rd[i]);
+        s.bot.td[i] += t * (st[2].bot.td[i] - st[1].bot.td[i]);
+        s.bot.ru[i] += t * (st[2].bot.ru[i] - st[1].bot.ru[i]);
+        s.bot.tu[i] += t * (st[2].bot.tu[i] - st[1].bot.tu[i]);
+    }
+    float al = A.x, be = A.y, ga = A.z;
+    float eo = n.x * n.x, ee = n.y * n.y, de = ee - eo;
+    vec2 r = csqrt_real(eo - K * K);
+    float a = eo + be * be * de;
+    vec2 root = csqrt_real(eo * (ee * a + K * K * (al * al * de - ee)));
+    vec2 lin = vec2(be * ga * K * de, 0.0);
+    s.od[0] = d * r;
+    s.ou[0] = d * r;
+    s.od[1] = -d * (lin - root) / a;
+    s.ou[1] = d * (lin + root) / a;
+    return s;
+}
+
+/* The closed form integrated with a plan of this many samples for one direction: the coherent
+ * regime, and for a dispersive material also the states whose lags' tangents break, then with
+ * n(λ) at every sample (biref_spectrum_numeric_dispersive). */
+vec3 sample_integral(SlabState st[9], bool dispersive, int row, HitFrame f, float d, float eta_i, int which,
+                     int samples)
+{
+    int base = plan_base(samples);
+    vec3 acc = vec3(0.0);
+    for (int n = 0; n < samples; n++) {
+        ivec2 tx = plan_texel(base + n);
+        vec4 s = texelFetch(u_plans, tx, 0);
+        SlabState st0 = st[0];
+        if (dispersive)
+            st0 = sample_state(st, BIREF_MATERIAL_TEXEL(ivec2(tx.x, row + tx.y)).xy, 2.0 * BIREF_PI / s.x, f.A,
+                               eta_i * f.sin_t, d);
+        if (which == 1) st0 = slab_flip(st0);
+        acc += s.yzw * coherent_detected(st0, which, which == 0 ? f.CT : f.CR, which == 0 ? f.PT : f.PR, s.x);
+    }
+    return acc;
+}
+
+/* State idx of the prepared states, flipped for reflection. */
+SlabState state_at(SlabState st[9], int idx, bool flip)
+{
+    SlabState s = st[0]; /* WebGL allows no ?: on structures */
+    for (int i = 1; i < 9; i++)
+        if (i == idx) s = st[i];
+    if (flip) s = slab_flip(s);
+    return s;
+}
+
+/* One hit: a slab of constant indices eta = (eta_o, eta_e, d nm), or (dispersive) of the
+ * material whose data start at row `row` of u_material (thickness eta.z). One function for both,
+ * called once by the scene shader, so that compilers keep one copy of every part. */
+bool shade_hit(vec3 view, vec3 normal, vec3 tangent, vec3 axis, vec3 eta, bool dispersive, int row, float eta_i,
+               BirefLight L, out vec3 T, out vec3 R)
+{
+    HitFrame f = hit_frame(view, normal, tangent, axis, L);
+    float d = eta.z;
+    int points_row = row + int(u_plan_grid.w + 0.5) - 1;
+    /* The slab states: for constant indices one; for a dispersive material (analytic_dispersive.c)
+     * 0-2 at the band centroids (the coherent regime and the plan where tangents break), 3 + 2 j + i
+     * at band j's Gauss node i (the runs: modes and Fresnel coefficients there). */
+    SlabState st[9];
+    bool ok = true;
+    int states = (dispersive ? 9 : 1) + int(u_lut_band.w); /* bounds from a uniform: loops stay rolled */
+    for (int j = 0; j < states; j++) {
+        vec2 n = dispersive ? BIREF_MATERIAL_TEXEL(ivec2(SUBBAND_POINTS + j, points_row)).xy : eta.xy;
+        ok = slab_prepare(n.x, n.y, f.A, d, eta_i, f.sin_t, st[j]) && ok;
+    }
+    /* Which directions are integrated exactly, with which plan: the densest plan of the centroid
+     * states in the coherent regime; else, for a material whose birefringent lags' tangents break,
+     * band 0's; else the densest of the node states in the regime. q = 2 state + direction. */
+    bool exact = false, broken = false;
+    int ns[2];
+    ns[0] = 0;
+    ns[1] = 0;
+    for (int pass = 0; pass < 2 && !exact; pass++) {
+        if (pass == 1) {
+            if (!dispersive) break;
+            sample_legs(points_row, f.A, eta_i * f.sin_t, d);
+            float worst = 0.0, residual;
+            for (int i = 0; i < 9; i++) {
+                if (i == 8) {
+                    for (int k = 0; k < 2; k++) {
+                        g_lag_c[16 + k] = g_lag_c[6 + k];
+                        g_lag_s[16 + k] = -g_lag_s[6 + k];
+                    }
+                } else {
+                    lag_integrals(lag_weights(i), i, residual);
+                    if (i < 3) worst = max(worst, residual);
+                }
+                if (i == 2 && worst > TANGENT_BREAK_RAD) break;
+            }
+            broken = worst > TANGENT_BREAK_RAD;
+        }
+        int first = pass == 0 ? 0 : 3, last = pass == 0 ? min(states, 3) : states;
+        for (int q = 2 * first; q < 2 * last; q++) {
+            int idx = q / 2, j = (idx - 3) / 2, i = (idx - 3) % 2;
+            if (pass == 1 && !broken && !(u_band_node_mass[i][j] > 0.0)) continue;
+            SlabState s = state_at(st, broken ? 0 : idx, q % 2 == 1);
+            if (broken ? idx != 3 : !coherent_regime(s)) continue;
+            exact = true;
+            ns[q % 2] = max(ns[q % 2], plan_samples(s));
+        }
+    }
+    vec3 res[2];
+    int dirs = 2 + int(u_lut_band.w);
+    for (int w = 0; w < dirs; w++) {
+        res[w] = vec3(0.0);
+        if (exact) res[w] = sample_integral(st, dispersive, row, f, d, eta_i, w, ns[w]);
+    }
+    /* Elsewhere eq. 26 kept physical, per (state, direction); a material's run at band j's node
+     * i gives band j of the colour, weighted by the node's share, its phase integrals the lags'
+     * under the node's weight. */
+    int runs = exact ? 0 : dispersive ? 12 : 2;
+    for (int q = 0; q < runs; q++) {
+        int idx = dispersive ? 3 + q / 2 : 0, which = q % 2, j = (idx - 3) / 2, i = (idx - 3) % 2;
+        float share = 1.0;
+        if (dispersive) {
+            float w = u_band_node_mass[i][j];
+            if (!(w > 0.0)) continue;
+            share = w / (u_band_node_mass[0][j] + u_band_node_mass[1][j]);
+            g_node = i;
+        }
+        bool flip = which == 1;
+        SlabState s = state_at(st, idx, flip);
+        TransPhases tp;
+        ReflPhases rp;
+        if (dispersive) {
+            tp = transmission_lags(s, flip);
+            rp = reflection_lags(s, flip);
+        } else {
+            tp = transmission_phases(s);
+            rp = reflection_phases(s);
+        }
+        vec3 c = slab_colour_phases(s, which, flip ? f.CR : f.CT, flip ? f.PR : f.PT, f.paper_model, tp, rp);
+        if (dispersive)
+            res[which][j] += share * c[j];
+        else
+            res[which] = c;
+    }
+    T = res[0];
+    R = res[1];
+    return hit_result(ok, f, T, R);
+}
+
+/* Transmitted and reflected band integrals at one hit (the entry point described above). */
+bool biref_shade_slab(vec3 view, vec3 normal, vec3 tangent, vec3 axis, vec3 eta, float eta_i, BirefLight L,
+                      out vec3 T, out vec3 R)
+{
+    return shade_hit(view, normal, tangent, axis, eta, false, 0, eta_i, L, T, R);
+}
+
+#if defined(BIREF_SCENE) || defined(BIREF_MATERIALS)
+/* The same for a slab of a dispersive material, thickness d_nm, whose data (u_material) start at
+ * row `row` (slab i of biref_gl_scene_materials: i * u_plan_grid.w); needs u_subbands too. */
+bool biref_shade_material(vec3 view, vec3 normal, vec3 tangent, vec3 axis, int row, float d_nm, float eta_i,
+                          BirefLight L, out vec3 T, out vec3 R)
+{
+    return shade_hit(view, normal, tangent, axis, vec3(0.0, 0.0, d_nm), true, row, eta_i, L, T, R);
+}
+#endif
 
 #ifdef BIREF_SCENE
 /* ------------------------------------------------------------------------------------------ */
@@ -853,6 +1337,7 @@ uniform vec3 u_slab_bitangent[BIREF_MAX_SLABS];
 uniform vec2 u_slab_half[BIREF_MAX_SLABS];
 uniform vec3 u_slab_axis[BIREF_MAX_SLABS];   /* world, unit */
 uniform vec3 u_slab_optics[BIREF_MAX_SLABS]; /* eta_o, eta_e, thickness nm */
+uniform float u_slab_material[BIREF_MAX_SLABS]; /* 1: a dispersive material (u_material) */
 
 uniform float u_n_panels;
 uniform vec3 u_panel_center[BIREF_MAX_PANELS];
@@ -868,7 +1353,7 @@ uniform vec3 u_env_zenith, u_env_horizon, u_env_ground, u_env_check_a, u_env_che
 uniform float u_env_check_size;
 
 uniform vec4 u_pol;    /* linear?, s fraction, p fraction, filter linear? */
-uniform vec2 u_mask;   /* s/p analyzer mask */
+uniform vec2 u_mask;   /* s/p analyzer mask, power fractions */
 uniform vec3 u_pol_dir, u_filter_dir;
 uniform vec3 u_rgb_from_xyz[3]; /* rows of the XYZ (white E) -> linear sRGB matrix */
 
@@ -954,16 +1439,18 @@ vec3 shade_pixel(vec3 dir, out float flag)
         return radiance(o, dir) * passthrough(light_coherency(L, s, p), analyzer(L, s, p));
     }
     vec3 nrm = vec3(0.0), tan_ = vec3(0.0), ax = vec3(0.0), eta = vec3(0.0);
+    float dispersive = 0.0;
     for (int i = 0; i < BIREF_MAX_SLABS; i++)
         if (i == hit) {
             nrm = u_slab_normal[i];
             tan_ = u_slab_tangent[i];
             ax = u_slab_axis[i];
             eta = u_slab_optics[i];
+            dispersive = u_slab_material[i];
         }
     vec3 hp = o + best * dir;
     vec3 T, R;
-    bool ok = biref_shade_slab(dir, nrm, tan_, ax, eta, u_eta_medium, L, T, R);
+    bool ok = shade_hit(dir, nrm, tan_, ax, eta, dispersive > 0.5, hit * int(u_plan_grid.w + 0.5), u_eta_medium, L, T, R);
     flag = ok ? 1.0 : 2.0;
     vec3 mirror = dir - 2.0 * dot(dir, nrm) * nrm;
     return T * radiance(hp, dir) + R * radiance(hp, mirror);

@@ -283,7 +283,9 @@ static void shade_hits_equals_shade_hit_per_hit(void)
         CHECK(agree);
         CHECK(st[5] == BIREF_ERR_INVALID && st[40] == BIREF_ERR_INVALID && st[60] == BIREF_ERR_INVALID);
         printf("%s shader: batch against one hit at a time, worst |difference| %.3g\n", names[i], worst);
-        CHECK(worst <= 1e-12); /* packets (lanes) against one hit at a time */
+        /* Packets (lanes) against one hit at a time: the paper's light takes float lanes on AVX2
+         * and AVX-512 (within ~1e-7, docs/PERFORMANCE.md), the others double lanes. */
+        CHECK(worst <= (i == 0 ? 1e-6 : 1e-12));
     }
     biref_shader_destroy(num);
     for (int i = 0; i < 3; i++) biref_shader_destroy(lit[i]);

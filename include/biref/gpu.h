@@ -43,7 +43,34 @@ typedef struct {
 /* Fills info and, if texels is not NULL, width * height * 4 floats (unused texels 0). */
 BIREF_API void biref_gl_coherent_plans(const biref_spectral *sp, biref_gl_plans_info *info, float *texels);
 
-/* Every uniform of the scene shader except the samplers u_lut and u_plans, as (name, components 1-4, array
+/* Dispersive materials (docs/PHYSICS.md §7, docs/GPU.md "Dispersive materials"). The sub-band
+ * tables as an RGBA float texture of width x height texels, row-major: table t = 2^L - 2 + b
+ * (level L = 1..levels, sub-band b of 2^L, uniform in k^2) holds band j in row 3 t + j, texels as
+ * biref_gl_table's rows 0-2 (same nodes, same carrier: row 3 of that table); points: the number
+ * of sample points of the legs' phases (the finest level's edges and midpoints). Fills info and,
+ * if texels is not NULL, width * height * 4 floats: then the tables are made on first use (12 MB
+ * held by sp, ~50 ms), BIREF_ERR_NOMEM when they cannot be. */
+typedef struct {
+    int width, height, levels, points;
+} biref_gl_subband_info;
+BIREF_API biref_status biref_gl_subband_table(const biref_spectral *sp, biref_gl_subband_info *info, float *texels);
+
+/* Per slab i of a scene, rows_per_slab rows of an RGBA float texture of width texels (rows
+ * i * rows_per_slab ..., all zero for a slab of constant indices): first the plans' texture
+ * layout (biref_gl_coherent_plans) with the material's (n_o, n_e, dn_o/dλ, dn_e/dλ) at each
+ * sample wavelength, then one row with the same at the sub-band sample points (texels
+ * 0..points-1, ascending wavenumber, uniform in k^2 over the band) and at the three band
+ * centroids 2 pi / k_centroid[j] (texels points..points+2) and at band j's two Gauss nodes i
+ * (texel points + 3 + 2 j + i; the wavenumbers of u_band_node_k). dispersive: how many slabs have a
+ * material. Fills info and, if texels is not NULL, width * height * 4 floats; BIREF_ERR_INVALID
+ * (texels NaN there) where a material is unphysical (biref_material_check_band says why). */
+typedef struct {
+    int width, height, rows_per_slab, dispersive;
+} biref_gl_material_info;
+BIREF_API biref_status biref_gl_scene_materials(const biref_scene *scene, const biref_spectral *sp,
+                                                biref_gl_material_info *info, float *texels);
+
+/* Every uniform of the scene shader except the samplers u_lut, u_plans, u_subbands and u_material, as (name, components 1-4, array
  * count, values): camera, slabs, panels, environment, polarizer and analyzer, look-up-table
  * constants and the XYZ -> linear sRGB matrix. The scene must be valid (biref_scene_validate). */
 typedef void (*biref_gl_uniform_fn)(void *user, const char *name, int components, int count, const float *v);

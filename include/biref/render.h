@@ -49,7 +49,7 @@ typedef struct {
     double thickness_nm;
     /* A named dispersive material (scene key "material", material.h) instead of eta_o, eta_e
      * (then 0), or NULL. The renderer integrates its slabs with n(λ) (biref_integrate_material):
-     * point look-ups (no prefilter), the CPU backend only. */
+     * point look-ups (no prefilter); the GLSL shader does the same (biref_gl_scene_materials). */
     const biref_material *material;
     /* A stack slab (docs/STACKS.md §5): n_layers > 0 layers from the +normal face (local +y)
      * downwards, each optic axis in the local frame above, the scene's medium around; eta_o, eta_e,

@@ -7,6 +7,7 @@
 #include "biref/gpu.h"
 #include "shading/vec3.h"
 #include "spectral/spectral_internal.h"
+#include "spectral/subband.h"
 
 extern const char biref_gl_shader_text[];
 
@@ -120,6 +121,8 @@ void biref_gl_scene_uniforms(const biref_scene *scene, const biref_spectral *sp,
     EMIT_ARRAY("u_slab_half", 2, ns, (v_[0] = 0.5 * S[i].size[0], v_[1] = 0.5 * S[i].size[1]));
     EMIT_ARRAY("u_slab_axis", 3, ns, v3_slab_axis_world(S[i].axis, S[i].tangent, S[i].normal, v_));
     EMIT_ARRAY("u_slab_optics", 3, ns, (v_[0] = S[i].eta_o, v_[1] = S[i].eta_e, v_[2] = S[i].thickness_nm));
+    /* 1: a dispersive material, its indices in the texture of biref_gl_scene_materials. */
+    EMIT_ARRAY("u_slab_material", 1, ns, v_[0] = S[i].material != NULL);
 
     const int np = scene->n_panels;
     const biref_panel *P = scene->panels;
@@ -184,8 +187,24 @@ void biref_gl_scene_uniforms(const biref_scene *scene, const biref_spectral *sp,
     emitv(fn, user, "u_lut_edge_lo", 3, t.edge_lo);
     emitv(fn, user, "u_lut_edge_hi", 3, t.edge_hi);
     emitv(fn, user, "u_k_centroid", 3, t.k_centroid);
+    /* Dispersive materials: each band's two Gauss nodes and their masses (biref_band_nodes; the
+     * sub-band tables are made for them only when a slab has a material). */
+    float nodes_k[6] = {0}, nodes_mass[6] = {0};
+    const biref_subbands *sb = NULL;
+    for (int i = 0; i < ns && !sb; i++)
+        if (S[i].material) sb = biref_spectral_subbands(sp);
+    if (sb) {
+        const biref_band_nodes *bn = biref_subband_nodes(sb);
+        for (int i = 0; i < BIREF_BAND_NODES; i++)
+            for (int j = 0; j < 3; j++) {
+                nodes_k[3 * i + j] = (float)bn->k[j][i];
+                nodes_mass[3 * i + j] = (float)bn->mass[j][i];
+            }
+    }
+    fn(user, "u_band_node_k", 3, 2, nodes_k);
+    fn(user, "u_band_node_mass", 3, 2, nodes_mass);
     biref_gl_plans_info pl;
     biref_gl_coherent_plans(sp, &pl, NULL);
-    double plan_grid[4] = {pl.width, pl.plans, pl.first_samples, 0.0};
+    double plan_grid[4] = {pl.width, pl.plans, pl.first_samples, pl.height + 1};
     emitv(fn, user, "u_plan_grid", 4, plan_grid);
 }

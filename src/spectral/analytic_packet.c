@@ -84,6 +84,15 @@ int biref_packet_eligible(const biref_spectral *sp, const biref_slab_state *st)
 biref_packet_hits_kernel biref_simd_hits_kernel(biref_simd_isa isa)
 {
     switch (isa) {
+    case BIREF_SIMD_AVX2: return biref_packet_hits_f32_avx2;
+    case BIREF_SIMD_AVX512: return biref_packet_hits_f32_avx512;
+    default: return biref_simd_hits_kernel_f64(isa);
+    }
+}
+
+biref_packet_hits_kernel biref_simd_hits_kernel_f64(biref_simd_isa isa)
+{
+    switch (isa) {
     case BIREF_SIMD_BASELINE: return biref_packet_hits_baseline;
     case BIREF_SIMD_AVX2: return biref_packet_hits_avx2;
     case BIREF_SIMD_AVX512: return biref_packet_hits_avx512;

@@ -91,6 +91,18 @@ void biref_packet_hits_avx512(const biref_spectral *sp, const double w_in[2], co
                               unsigned char *scalar, const biref_opl_footprint *fp,
                                 const biref_packet_hit_light *lights);
 
+/* The same with float lanes for the terms (analytic_packet_f32_kernel.inc: set-up and look-ups in
+ * double, coefficients and phase integrals then rounded to float): results within ~1e-6 of the
+ * double kernels' above, which stay the reference. A light per hit takes the double kernel. */
+void biref_packet_hits_f32_avx2(const biref_spectral *sp, const double w_in[2], const double mask[2],
+                                const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3],
+                                unsigned char *scalar, const biref_opl_footprint *fp,
+                                const biref_packet_hit_light *lights);
+void biref_packet_hits_f32_avx512(const biref_spectral *sp, const double w_in[2], const double mask[2],
+                                  const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3],
+                                  unsigned char *scalar, const biref_opl_footprint *fp,
+                                  const biref_packet_hit_light *lights);
+
 /* The instruction sets, fastest last. */
 typedef enum {
     BIREF_SIMD_SCALAR = 0, /* no packets: every state through the scalar worker */
@@ -112,8 +124,12 @@ biref_status biref_simd_isa_pick(biref_simd_isa *out, char *msg, size_t msg_len)
  * whose integrator was created first and so has refused a bad BIREF_SIMD already; they should
  * rather take biref_integrator_simd of their integrator). */
 biref_simd_isa biref_simd_isa_choose(void);
-/* The hit kernel of a path (NULL for BIREF_SIMD_SCALAR). */
+/* The hit kernel of a path (NULL for BIREF_SIMD_SCALAR): the integrator's, with float lanes where
+ * the set has them (AVX2, AVX-512), else the double one. */
 biref_packet_hits_kernel biref_simd_hits_kernel(biref_simd_isa isa);
+/* The double kernel of a path (NULL for BIREF_SIMD_SCALAR): the reference the float lanes are
+ * checked against. */
+biref_packet_hits_kernel biref_simd_hits_kernel_f64(biref_simd_isa isa);
 
 /* Can the packet kernel take this state? Real coefficients and paths (no evanescent mode) and
  * not in the coherent regime (biref_coherent_plan(sp, st) == NULL). The same for the flipped

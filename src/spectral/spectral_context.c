@@ -127,6 +127,14 @@ biref_status biref_spectral_create(const biref_spectral_config *cfg_in, biref_sp
         return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
     }
     biref_table_packet_layout(sp->table, sp->carrier, sp->nodes, sp->packet_table);
+    /* Nodes * 128 bytes. */
+    sp->packet_table_f32 =
+        aligned_alloc(64, (size_t)sp->nodes * BIREF_PACKET_TABLE_F32_STRIDE * sizeof *sp->packet_table_f32);
+    if (!sp->packet_table_f32) {
+        biref_spectral_destroy(sp);
+        return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
+    }
+    biref_table_packet_layout_f32(sp->packet_table, sp->nodes, sp->packet_table_f32);
     double lo[3], hi[3];
     biref_cmf_band_eval(&sp->band, cfg.lambda_min_nm, lo);
     biref_cmf_band_eval(&sp->band, cfg.lambda_max_nm, hi);
@@ -163,6 +171,7 @@ void biref_spectral_destroy(biref_spectral *sp)
     free(sp->table);
     free(sp->carrier);
     free(sp->packet_table);
+    free(sp->packet_table_f32);
     for (int i = 0; i < sp->n_coherent; i++) biref_numeric_plan_destroy(sp->coherent[i]);
     biref_subbands_destroy(atomic_load_explicit(&sp->subbands, memory_order_acquire));
     free(sp);

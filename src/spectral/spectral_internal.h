@@ -30,6 +30,9 @@ struct biref_spectral {
     /* The same table re-laid out for the packet kernel (biref_table_packet_layout): 16 doubles
      * per node, 64-byte aligned, so that one lane's look-up reads 32 contiguous doubles. */
     double *packet_table;
+    /* The same rounded to float for the float lanes' look-ups (biref_table_packet_layout_f32):
+     * 32 floats per node, 64-byte aligned. */
+    float *packet_table_f32;
     /* Endpoint terms of the asymptotic expansion used beyond d_max (integration by parts):
      * S(e^{ikD}) ~ i/(2 pi D) [Λ λ^2 e^{2 pi i D/λ}]_{λmin}^{λmax}. */
     double edge_lo[3], edge_hi[3];

@@ -32,6 +32,10 @@ void biref_subbands_destroy(biref_subbands *sb);
 /* The wavenumbers of the sample points (1/nm), ascending. */
 const double *biref_subband_points(const biref_subbands *sb);
 
+/* The demodulated table of level L (1..BIREF_SUBBAND_LEVELS), sub-band b: [node][12] in the
+ * point table's layout (per band re, im, dre/dD, dim/dD), the point table's carrier. */
+const double *biref_subband_table(const biref_subbands *sb, int level, int b);
+
 /* T_{L,b,j}(D) for the three bands, any real D with |D| <= the table's d_max. */
 void biref_subband_eval(const biref_subbands *sb, int level, int b, double d, double complex v[3]);
 

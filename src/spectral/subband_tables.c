@@ -128,6 +128,8 @@ void biref_subbands_destroy(biref_subbands *sb)
 
 const double *biref_subband_points(const biref_subbands *sb) { return sb->k; }
 
+const double *biref_subband_table(const biref_subbands *sb, int level, int b) { return table_of(sb, level, b); }
+
 const biref_band_nodes *biref_subband_nodes(const biref_subbands *sb) { return &sb->nodes; }
 
 void biref_subband_eval_moment(const biref_subbands *sb, int level, int b, double d, double complex v[3],

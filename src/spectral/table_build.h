@@ -57,4 +57,26 @@ static inline void biref_table_packet_layout(const double *table, const double *
     }
 }
 
+/* The float lanes' copy (analytic_packet_f32_kernel.inc): per node m the 32 floats one lane
+ * reads, [F_j(m), carrier(m) | dF_j(m)/dD, 0, 0 | F_j(m + 1), carrier(m) | dF_j(m + 1)/dD, 0, 0]
+ * from the packet layout above, each value rounded once. The carrier sits in both value blocks,
+ * so the Hermite weights h00 + h01 = 1 give it without masking the weights per lane. The last
+ * node has no successor (look-ups use nodes m <= nodes - 2): its second half is 0 but for the
+ * carrier. */
+#define BIREF_PACKET_TABLE_F32_STRIDE 32
+static inline void biref_table_packet_layout_f32(const double *packet, int nodes, float *out)
+{
+    for (int m = 0; m < nodes; m++) {
+        const double *row = packet + (size_t)m * BIREF_PACKET_TABLE_STRIDE;
+        const double *next = m + 1 < nodes ? row + BIREF_PACKET_TABLE_STRIDE : NULL;
+        float *o = out + (size_t)m * BIREF_PACKET_TABLE_F32_STRIDE;
+        for (int v = 0; v < 16; v++) {
+            o[v] = (float)row[v];
+            o[16 + v] = next ? (float)next[v] : 0.0f;
+        }
+        o[16 + 6] = (float)row[6];
+        o[16 + 7] = (float)row[7];
+    }
+}
+
 #endif

@@ -67,12 +67,13 @@ expect_ok "spectrum analytic with a material" spectrum --material calcite "${geo
 expect_grep "analytic with a material" '"method":[[:space:]]*"analytic"'
 expect_ok "spectrum expansion with a material" spectrum --material calcite "${geo[@]}" --method expansion
 expect_error "spectrum pole in the band" spectrum --sellmeier-o 1,0.25 --eta-e 1.5 "${geo[@]}" --method numeric
-# Scenes: "material" in place of eta_o/eta_e (CPU only), refused where it cannot be honoured.
+# Scenes: "material" in place of eta_o/eta_e, refused where it cannot be honoured.
 expect_ok "render a rutile plate" render examples/materials/rutile_plate.json -o "$tmpdir/rutile.png" \
   --width 32 --height 18 -q
 [ -s "$tmpdir/rutile.png" ] || { echo "FAIL: rutile.png missing"; fails=$((fails + 1)); }
-expect_error "render a material with the GL backend" render examples/materials/rutile_plate.json \
-  -o "$tmpdir/gl.png" --backend gl --width 32 --height 18
+# The GL backend renders them (tests/cli/gl.sh); the browser viewer's data module does not take them.
+expect_error "gl-data refuses a material" gl-data -o "$tmpdir/m.js" examples/materials/rutile_plate.json
+[ ! -e "$tmpdir/m.js" ] || { echo "FAIL: gl-data wrote a module for a material scene"; fails=$((fails + 1)); }
 sed 's/"material": "rutile"/"material": "rutile", "eta_o": 2.6/' examples/materials/rutile_plate.json >"$tmpdir/both.json"
 expect_error "scene with material and eta_o" render "$tmpdir/both.json" -o "$tmpdir/both.png"
 sed 's/"material": "rutile"/"material": "unobtainium"/' examples/materials/rutile_plate.json >"$tmpdir/unknown.json"

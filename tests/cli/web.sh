@@ -39,6 +39,14 @@ for dialect in es desktop; do
     glslangValidator "$tmpdir/s.$stage" >"$tmpdir/glslang.log" 2>&1 ||
       { echo "FAIL: the shader does not compile as $dialect $stage:"; head -5 "$tmpdir/glslang.log"; fails=$((fails + 1)); }
   done
+  # The per-hit part for another renderer, with dispersive materials (BIREF_MATERIALS).
+  { printf "$prelude#define BIREF_MATERIALS\n"; cat shaders/biref_analytic.glsl
+    printf 'out vec4 o;\nvoid main() { BirefLight L; L.pol_linear = 0.0; L.filter_linear = 0.0; L.pol_w = vec2(0.5);\n'
+    printf '  L.mask = vec2(1.0); vec3 T, R; bool ok = biref_shade_material(vec3(0.0, -1.0, 0.0), vec3(0.0, 1.0, 0.0),\n'
+    printf '  vec3(1.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0), 0, 40000.0, 1.0, L, T, R); o = vec4(T + R, ok ? 1.0 : 0.0); }\n'
+  } >"$tmpdir/m.frag"
+  glslangValidator "$tmpdir/m.frag" >"$tmpdir/glslang.log" 2>&1 ||
+    { echo "FAIL: the shader with BIREF_MATERIALS does not compile as $dialect:"; head -5 "$tmpdir/glslang.log"; fails=$((fails + 1)); }
 done
 
 url="file://$PWD/web/index.html"

@@ -99,6 +99,7 @@ biref_status biref_spectral_create(const biref_spectral_config *cfg_in, biref_sp
     biref_phase_grid_init(&grid, &sp->band, cfg.lambda_min_nm, cfg.lambda_max_nm);
     sp->nu_c = grid.nu_c;
     sp->step = grid.step;
+    sp->inv_step = 1.0 / grid.step;
     sp->nodes = grid.nodes;
     sp->d_max = (sp->nodes - 1) * sp->step;
     sp->table = calloc((size_t)sp->nodes * BIREF_TABLE_ROW, sizeof *sp->table);

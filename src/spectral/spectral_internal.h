@@ -22,7 +22,7 @@ struct biref_spectral {
      * interpolation. Demodulating by the band-centre frequency nu_c leaves a function that
      * varies on the scale 1 / (half the band's width in 1/lambda), so a coarse step suffices. */
     double nu_c;
-    double step;
+    double step, inv_step; /* inv_step = 1 / step, for the float lanes' node positions */
     int nodes;
     double d_max;
     double *table;

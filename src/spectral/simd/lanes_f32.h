@@ -112,4 +112,31 @@ static inline vf vf_of8(const vf8 g[FLOAT_W / 8])
 #endif
 }
 
+/* 1 / x to ~1e-8 where AVX-512's 14-bit estimates exist (rcp14, rsqrt14, one Newton step each:
+ * the error squares to ~4e-9), else exact: for the set-up's scale factors (V_COEF_RECIP of
+ * packet_setup.inc) in double lanes and the terms' divisions in float lanes, whose results are
+ * rounded to float anyway. Zero gives NaN instead of infinity: only in lanes marked bad. */
+#if defined(__AVX512F__) && PACKET_W == 8
+static inline vd vd_recip_est(vd x)
+{
+    vd r = (vd)_mm512_rcp14_pd((__m512d)x);
+    return r * (2.0 - x * r);
+}
+static inline vd vd_rsqrt_est(vd x)
+{
+    vd y = (vd)_mm512_rsqrt14_pd((__m512d)x);
+    return y * (1.5 - (0.5 * x) * (y * y));
+}
+static inline vf vf_recip(vf x)
+{
+    vf r = (vf)_mm512_rcp14_ps((__m512)x);
+    return r * (2.0f - x * r);
+}
+#define V_COEF_RECIP(x) vd_recip_est(x)
+#define V_COEF_RSQRT(x) vd_rsqrt_est(x)
+#define V_COEF_SQRT(x) ((x) * vd_rsqrt_est(x))
+#else
+static inline vf vf_recip(vf x) { return 1.0f / x; }
+#endif
+
 #endif

@@ -58,8 +58,8 @@ static void sp_light_terms_equal_paper_terms_mixed(void)
             for (int which = 0; which < 2; which++) {
                 const biref_opl_footprint *f = with_fp ? &fp : NULL;
                 double E[2][2][3], H[2][2][3], Eg[3], Hg[3], Ep[3] = {0, 0, 0}, Hp[3] = {0, 0, 0};
-                biref_analytic_paper_terms_footprint(sp, &st, f, which, E, H);
-                biref_analytic_general_terms(sp, &st, f, which, C, P, Eg, Hg);
+                biref_analytic_paper_terms_footprint(sp, &st, f, which, k & 1, E, H);
+                biref_analytic_general_terms(sp, &st, f, which, k & 1, C, P, Eg, Hg); /* both methods */
                 for (int i = 0; i < 2; i++)
                     for (int o = 0; o < 2; o++)
                         for (int j = 0; j < 3; j++) {
@@ -97,9 +97,9 @@ static void footprint_terms_reduce_to_points(void)
         random_footprint(&rng, &fp);
         for (int which = 0; which < 2; which++) {
             double E0[3], H0[3], Ez[3], Hz[3], Ef[3], Hf[3];
-            biref_analytic_general_terms(sp, &st, NULL, which, C, P, E0, H0);
-            biref_analytic_general_terms(sp, &st, &zero, which, C, P, Ez, Hz);
-            biref_analytic_general_terms(sp, &st, &fp, which, C, P, Ef, Hf);
+            biref_analytic_general_terms(sp, &st, NULL, which, 1, C, P, E0, H0);
+            biref_analytic_general_terms(sp, &st, &zero, which, 1, C, P, Ez, Hz);
+            biref_analytic_general_terms(sp, &st, &fp, which, 1, C, P, Ef, Hf);
             for (int j = 0; j < 3; j++) {
                 CHECK(Ez[j] == E0[j] && Ef[j] == E0[j]); /* E has no phase */
                 CHECK_NEAR(Hz[j], H0[j], 1e-12);
@@ -129,9 +129,9 @@ static void integrator_takes_every_light(void)
     biref_integration r;
     CHECK(biref_integrate(it, &st, BIREF_SIDE_BOTH, &l, &r) == BIREF_OK);
     double T[3], R[3];
-    biref_analytic_general(sp, &st, NULL, BIREF_TRANSMISSION, (const double complex(*)[2])l.C,
+    biref_analytic_general(sp, &st, NULL, BIREF_TRANSMISSION, 0, (const double complex(*)[2])l.C,
                            (const double complex(*)[2])P, T);
-    biref_analytic_general(sp, &st, NULL, BIREF_REFLECTION, (const double complex(*)[2])l.C,
+    biref_analytic_general(sp, &st, NULL, BIREF_REFLECTION, 0, (const double complex(*)[2])l.C,
                            (const double complex(*)[2])P, R);
     for (int j = 0; j < 3; j++) CHECK(r.T[j] == T[j] && r.R[j] == R[j] && r.T[j] >= 0 && r.R[j] >= 0);
     biref_integrator_destroy(it);
@@ -164,7 +164,7 @@ static void general_light_close_to_expansion(void)
             for (int which = 0; which < 2; which++) {
                 const biref_opl_footprint *f = with_fp ? &fp : NULL;
                 double a[3], x[3];
-                biref_analytic_general(sp, &st, f, which, (const double complex(*)[2])C,
+                biref_analytic_general(sp, &st, f, which, 1, (const double complex(*)[2])C,
                                        (const double complex(*)[2])P, a);
                 CHECK(biref_expansion_polarized_footprint(sp, &st, f, which, (const double complex(*)[2])C,
                                                           (const double complex(*)[2])P, NULL, x, NULL) == BIREF_OK);

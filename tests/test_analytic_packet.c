@@ -110,12 +110,19 @@ static biref_packet_hits columns(const biref_packet_hit *h, size_t n, double *bu
     return (biref_packet_hits){buf, n};
 }
 
+/* The double kernel of a path for the analytic method (pairs 0) or analytic-pairs (1). */
+static biref_packet_hits_kernel f64_kernel(int isa, int pairs)
+{
+    return pairs ? biref_simd_hits_kernel_f64_pairs((biref_simd_isa)isa) : biref_simd_hits_kernel_f64((biref_simd_isa)isa);
+}
+
 /* The kernels of a path: k = 0 the integrator's (float lanes on AVX2 and AVX-512), k = 1 the
  * double one when it is another (NULL when not). */
-static biref_packet_hits_kernel path_kernel(int isa, int k)
+static biref_packet_hits_kernel path_kernel(int isa, int k, int pairs)
 {
-    biref_packet_hits_kernel fast = biref_simd_hits_kernel((biref_simd_isa)isa),
-                             f64 = biref_simd_hits_kernel_f64((biref_simd_isa)isa);
+    biref_packet_hits_kernel fast = pairs ? biref_simd_hits_kernel_pairs((biref_simd_isa)isa)
+                                          : biref_simd_hits_kernel((biref_simd_isa)isa),
+                             f64 = f64_kernel(isa, pairs);
     return k == 0 ? fast : f64 != fast ? f64 : NULL;
 }
 
@@ -127,7 +134,7 @@ static biref_packet_hits_kernel path_kernel(int isa, int k)
 /* The kernels that prepare the hits themselves, against biref_slab_prepare_trusted and
  * biref_analytic_mixed of the state (transmission) and of its flip (reflection). A hit the kernel
  * takes must be one the scalar path would give it (biref_packet_eligible). */
-static void test_hit_kernels_vs_scalar(void)
+static void hit_kernels_vs_scalar(int pairs)
 {
     biref_spectral *sp = NULL;
     CHECK(biref_spectral_create(NULL, &sp, NULL, 0) == BIREF_OK);
@@ -152,8 +159,8 @@ static void test_hit_kernels_vs_scalar(void)
         if (biref_packet_eligible(sp, &states[n])) {
             biref_slab_state fl;
             biref_slab_state_flip(&states[n], &fl);
-            biref_analytic_mixed(sp, &states[n], BIREF_TRANSMISSION, w_in, mask, wantT[n]);
-            biref_analytic_mixed(sp, &fl, BIREF_REFLECTION, w_in, mask, wantR[n]);
+            biref_analytic_mixed(sp, &states[n], BIREF_TRANSMISSION, pairs, w_in, mask, wantT[n]);
+            biref_analytic_mixed(sp, &fl, BIREF_REFLECTION, pairs, w_in, mask, wantR[n]);
             eligible++;
         }
         n++;
@@ -161,9 +168,9 @@ static void test_hit_kernels_vs_scalar(void)
     const biref_packet_hits H = columns(hits, n, cols);
     for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
         for (int kk = 0; kk < 2; kk++) {
-            biref_packet_hits_kernel kernel = biref_simd_isa_supported((biref_simd_isa)isa) ? path_kernel(isa, kk) : NULL;
+            biref_packet_hits_kernel kernel = biref_simd_isa_supported((biref_simd_isa)isa) ? path_kernel(isa, kk, pairs) : NULL;
             if (!kernel) continue;
-            const int f32 = kernel != biref_simd_hits_kernel_f64((biref_simd_isa)isa);
+            const int f32 = kernel != f64_kernel(isa, pairs);
             kernel(sp, w_in, mask, &H, n, T, R, scalar, NULL, NULL);
             double worst = 0.0;
             int taken = 0, declined = 0;
@@ -178,14 +185,18 @@ static void test_hit_kernels_vs_scalar(void)
                 for (int b = 0; b < 3; b++)
                     worst = fmax(worst, fmax(fabs(T[k][b] - wantT[k][b]), fabs(R[k][b] - wantR[k][b])));
             }
-            printf("%s%s: %d of %d eligible hits in lanes (%d declined), max |packet - scalar| = %.3g\n",
-                   biref_simd_isa_name((biref_simd_isa)isa), f32 ? " float lanes" : "", taken, eligible, declined, worst);
+            printf("%s%s%s: %d of %d eligible hits in lanes (%d declined), max |packet - scalar| = %.3g\n",
+                   pairs ? "analytic-pairs " : "", biref_simd_isa_name((biref_simd_isa)isa), f32 ? " float lanes" : "",
+                   taken, eligible, declined, worst);
             CHECK(worst < (f32 ? F32_LANES_XYZ : F64_LANES_XYZ));
             CHECK(declined <= eligible / 100);
         }
     }
     biref_spectral_destroy(sp);
 }
+
+static void test_hit_kernels_vs_scalar(void) { hit_kernels_vs_scalar(0); }
+static void pairs_hit_kernels_vs_scalar(void) { hit_kernels_vs_scalar(1); }
 
 /* A random footprint: every leg's change across the pixel from none through sub-nanometre (below
  * the point-width threshold) to many fringes, some legs still. */
@@ -242,7 +253,7 @@ static void prefiltered_hit_kernels_vs_scalar(void)
         memcpy(wantT[n], res.T, sizeof res.T);
         CHECK(biref_integrate_footprint(it, &fl, &fpR, BIREF_SIDE_REFLECTION, &light, &res) == BIREF_OK);
         memcpy(wantR[n], res.R, sizeof res.R);
-        biref_analytic_mixed(sp, &states[n], BIREF_TRANSMISSION, w_in, mask, plainT[n]);
+        biref_analytic_mixed(sp, &states[n], BIREF_TRANSMISSION, 0, w_in, mask, plainT[n]);
         n++;
     }
     /* The footprints matter: the prefiltered results are not the point ones. */
@@ -253,9 +264,9 @@ static void prefiltered_hit_kernels_vs_scalar(void)
     const biref_packet_hits H = columns(hits, n, cols);
     for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
         for (int kk = 0; kk < 2; kk++) {
-            biref_packet_hits_kernel kernel = biref_simd_isa_supported((biref_simd_isa)isa) ? path_kernel(isa, kk) : NULL;
+            biref_packet_hits_kernel kernel = biref_simd_isa_supported((biref_simd_isa)isa) ? path_kernel(isa, kk, 0) : NULL;
             if (!kernel) continue;
-            const int f32 = kernel != biref_simd_hits_kernel_f64((biref_simd_isa)isa);
+            const int f32 = kernel != f64_kernel(isa, 0);
             kernel(sp, w_in, mask, &H, n, T, R, scalar, fps, NULL);
             double worst = 0.0;
             int taken = 0;
@@ -305,8 +316,8 @@ static void float_lanes_vs_double_lanes_random_lights(void)
     const biref_packet_hits H = columns(hits, N, cols);
     int runs = 0;
     for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
-        biref_packet_hits_kernel f32 = biref_simd_isa_supported((biref_simd_isa)isa) ? path_kernel(isa, 0) : NULL,
-                                 f64 = f32 ? path_kernel(isa, 1) : NULL;
+        biref_packet_hits_kernel f32 = biref_simd_isa_supported((biref_simd_isa)isa) ? path_kernel(isa, 0, 0) : NULL,
+                                 f64 = f32 ? path_kernel(isa, 1, 0) : NULL;
         if (!f64) continue; /* no float lanes on this path */
         double worst = 0.0;
         int taken = 0;
@@ -436,7 +447,7 @@ static void random_complex_light(test_rng *rng, biref_packet_light *l)
  * flip, with and without footprints), on every instruction set and through the integrator's door
  * (biref_integrate_packet_hits_lit). Complex lights take point look-ups only: prefiltered, the
  * kernel declines them. */
-static void light_per_hit_kernels_vs_scalar(int complex_light)
+static void light_per_hit_kernels_vs_scalar(int complex_light, int pairs)
 {
     biref_spectral *sp = NULL;
     biref_phase_prefilter *pf = NULL;
@@ -473,10 +484,10 @@ static void light_per_hit_kernels_vs_scalar(int complex_light)
         double complex C[2][2], P[2][2];
         for (int f = 0; f < 2; f++) {
             light_matrices(&lights[n].T, C, P);
-            biref_analytic_general(sp, &st, f ? &fps[n] : NULL, BIREF_TRANSMISSION, (const double complex(*)[2])C,
+            biref_analytic_general(sp, &st, f ? &fps[n] : NULL, BIREF_TRANSMISSION, pairs, (const double complex(*)[2])C,
                                    (const double complex(*)[2])P, want[f][n][0]);
             light_matrices(&lights[n].R, C, P);
-            biref_analytic_general(sp, &fl, f ? &fpR : NULL, BIREF_REFLECTION, (const double complex(*)[2])C,
+            biref_analytic_general(sp, &fl, f ? &fpR : NULL, BIREF_REFLECTION, pairs, (const double complex(*)[2])C,
                                    (const double complex(*)[2])P, want[f][n][1]);
         }
         n++;
@@ -485,7 +496,7 @@ static void light_per_hit_kernels_vs_scalar(int complex_light)
     for (int isa = BIREF_SIMD_BASELINE; isa < BIREF_SIMD_COUNT; isa++) {
         if (!biref_simd_isa_supported((biref_simd_isa)isa)) continue;
         for (int f = 0; f < 2; f++) {
-            biref_simd_hits_kernel((biref_simd_isa)isa)(sp, NULL, NULL, &H, n, T, R, scalar, f ? fps : NULL, lights);
+            path_kernel(isa, 0, pairs)(sp, NULL, NULL, &H, n, T, R, scalar, f ? fps : NULL, lights);
             double worst = 0.0;
             int taken = 0;
             for (size_t k = 0; k < n; k++) {
@@ -504,6 +515,7 @@ static void light_per_hit_kernels_vs_scalar(int complex_light)
      * methods' lanes take them too: tests/test_expansion_packet.c, tests/test_numeric_lanes.c). */
     biref_integrator_options o;
     biref_integrator_options_default(&o);
+    if (pairs) o.method = BIREF_METHOD_ANALYTIC_PAIRS;
     biref_integrator *it = NULL;
     CHECK(biref_integrator_create(sp, &o, &it, NULL, 0) == BIREF_OK);
     biref_integrate_packet_hits_lit(it, &H, NULL, n, lights, T, R, scalar);
@@ -519,8 +531,10 @@ static void light_per_hit_kernels_vs_scalar(int complex_light)
     biref_spectral_destroy(sp);
 }
 
-static void general_light_hit_kernels_vs_scalar(void) { light_per_hit_kernels_vs_scalar(0); }
-static void complex_light_hit_kernels_vs_scalar(void) { light_per_hit_kernels_vs_scalar(1); }
+static void general_light_hit_kernels_vs_scalar(void) { light_per_hit_kernels_vs_scalar(0, 0); }
+static void complex_light_hit_kernels_vs_scalar(void) { light_per_hit_kernels_vs_scalar(1, 0); }
+static void pairs_general_light_hit_kernels_vs_scalar(void) { light_per_hit_kernels_vs_scalar(0, 1); }
+static void pairs_complex_light_hit_kernels_vs_scalar(void) { light_per_hit_kernels_vs_scalar(1, 1); }
 
 int main(int argc, char **argv)
 {
@@ -532,6 +546,9 @@ int main(int argc, char **argv)
         {"general_light_hit_kernels_vs_scalar", general_light_hit_kernels_vs_scalar},
         {"complex_light_hit_kernels_vs_scalar", complex_light_hit_kernels_vs_scalar},
         {"hit_kernels_vs_scalar_set_up", test_hit_kernels_vs_scalar},
+        {"analytic_pairs_hit_kernels_vs_scalar", pairs_hit_kernels_vs_scalar},
+        {"analytic_pairs_general_light_hit_kernels_vs_scalar", pairs_general_light_hit_kernels_vs_scalar},
+        {"analytic_pairs_complex_light_hit_kernels_vs_scalar", pairs_complex_light_hit_kernels_vs_scalar},
         {"prefiltered_hit_kernels_vs_scalar", prefiltered_hit_kernels_vs_scalar},
         {"float_lanes_vs_double_lanes_random_lights", float_lanes_vs_double_lanes_random_lights},
         {"renders_per_isa_vs_scalar", test_renders_per_isa},

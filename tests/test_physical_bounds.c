@@ -217,7 +217,7 @@ static void path_energies_sum_to_one_without_total_reflection(void)
         const sample *x = &samples[k];
         if (x->st.total_reflection) continue;
         double E[2][2][2][3], H[2][2][3];
-        for (int w = 0; w < 2; w++) biref_analytic_paper_terms(sp, &x->st, w, E[w], H);
+        for (int w = 0; w < 2; w++) biref_analytic_paper_terms(sp, &x->st, w, 0, E[w], H);
         for (int i = 0; i < 2; i++)
             for (int j = 0; j < 3; j++) {
                 double sum = E[0][i][0][j] + E[0][i][1][j] + E[1][i][0][j] + E[1][i][1][j];

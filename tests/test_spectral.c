@@ -130,7 +130,7 @@ static void energy_term_is_the_incoherent_path_sum(void)
         random_state(&rng, 1000, 1e6, 0.3, &st);
         for (int which = 0; which < 2; which++) {
             double E[2][2][3], H[2][2][3];
-            biref_analytic_paper_terms(sp, &st, which, E, H);
+            biref_analytic_paper_terms(sp, &st, which, t & 1, E, H); /* both methods: same E */
             size_t n = biref_path_count(which, 8);
             biref_path *paths = malloc(n * sizeof *paths);
             CHECK(biref_slab_paths(&st, which, 8, paths, n) == n);
@@ -157,8 +157,8 @@ static void energy_term_is_the_incoherent_path_sum(void)
 }
 
 /* Analytic approximation vs ground truth on thin slabs at moderate angles (colours that
- * the 16384-sample ground truth resolves without aliasing). */
-static void analytic_approximation_matches_ground_truth_on_thin_slabs(void)
+ * the 16384-sample ground truth resolves without aliasing); pairs: the analytic-pairs method. */
+static void thin_slabs_vs_ground_truth(int pairs)
 {
     biref_numeric_plan *gt = NULL;
     CHECK(biref_numeric_plan_create(sp, BIREF_GROUND_TRUTH_SAMPLES, &gt, NULL, 0) == BIREF_OK);
@@ -169,7 +169,7 @@ static void analytic_approximation_matches_ground_truth_on_thin_slabs(void)
         biref_slab_state st;
         random_state(&rng, 2000, 50000, 0.05, &st);
         biref_spectrum a, g;
-        biref_spectrum_analytic(sp, &st, &a);
+        (pairs ? biref_spectrum_analytic_pairs : biref_spectrum_analytic)(sp, &st, &a);
         biref_spectrum_numeric(gt, &st, &g);
         double w[2] = {0.5, 0.5}, crossed[2] = {0, 1}, xa[3], xg[3];
         /* Crossed polarisers (s in, p out) amplify the birefringence colours. */
@@ -183,15 +183,25 @@ static void analytic_approximation_matches_ground_truth_on_thin_slabs(void)
         double der = biref_delta_e00_xyz(xa, xg);
         sum += de, worst = fmax(worst, de), sum_r += der, worst_r = fmax(worst_r, der);
     }
-    printf("analytic vs ground truth, thin slabs: T crossed mean %.3f max %.3f; R mean %.3f max %.3f\n", sum / n,
-           worst, sum_r / n, worst_r);
-    /* Measured (seed 2024, 150 slabs): T crossed mean 0.004, max 0.043; R mean 0.011, max 0.12.
-     * Eq. 26 alone (no siblings) gave 0.129 and 1.89 (R 0.016, 0.29), and before the energy balance
-     * 0.24 and 2.39: the bound holds the siblings' gain. */
-    CHECK(sum / n < 0.02 && worst < 0.2);
-    CHECK(sum_r / n < 0.05 && worst_r < 0.3);
+    printf("%s vs ground truth, thin slabs: T crossed mean %.3f max %.3f; R mean %.3f max %.3f\n",
+           pairs ? "analytic-pairs" : "analytic", sum / n, worst, sum_r / n, worst_r);
+    if (pairs) {
+        /* Measured (seed 2024, 150 slabs): T crossed mean 0.004, max 0.043; R mean 0.011, max
+         * 0.12: the bound holds the siblings' gain. */
+        CHECK(sum / n < 0.02 && worst < 0.2);
+        CHECK(sum_r / n < 0.05 && worst_r < 0.3);
+    } else {
+        /* Measured (seed 2024, 150 slabs): T crossed mean 0.129, max 1.89 (the omitted
+         * non-descendant pairs, eq. 23); R mean 0.016, max 0.29. Before the energy balance the T
+         * figures were 0.24 and 2.39, so the bound now holds the balance's gain. */
+        CHECK(sum / n < 0.2 && worst < 2.5);
+        CHECK(sum_r / n < 0.1 && worst_r < 0.5);
+    }
     biref_numeric_plan_destroy(gt);
 }
+
+static void analytic_approximation_matches_ground_truth_on_thin_slabs(void) { thin_slabs_vs_ground_truth(0); }
+static void analytic_pairs_matches_ground_truth_on_thin_slabs(void) { thin_slabs_vs_ground_truth(1); }
 
 /* Bad input. */
 static void bad_input_is_refused(void)
@@ -225,6 +235,7 @@ int main(int argc, char **argv)
         {"numeric_integration_converges_to_ground_truth", numeric_integration_converges_to_ground_truth},
         {"energy_term_is_the_incoherent_path_sum", energy_term_is_the_incoherent_path_sum},
         {"analytic_approximation_matches_ground_truth_on_thin_slabs", analytic_approximation_matches_ground_truth_on_thin_slabs},
+        {"analytic_pairs_matches_ground_truth_on_thin_slabs", analytic_pairs_matches_ground_truth_on_thin_slabs},
         {"bad_input_is_refused", bad_input_is_refused},
     };
     int rc = test_run_cases("test_spectral", cases, TEST_COUNT(cases), argc, argv);

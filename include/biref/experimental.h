@@ -60,6 +60,10 @@ BIREF_API void biref_spectrum_numeric(const biref_numeric_plan *plan, const bire
 /* The paper's analytic approximation (eqs. 20–26, m = 1) for all four input/output pairs,
  * transmission and reflection (no allocation). */
 BIREF_API void biref_spectrum_analytic(const biref_spectral *sp, const biref_slab_state *st, biref_spectrum *out);
+/* The same by the analytic-pairs method (BIREF_METHOD_ANALYTIC_PAIRS): eq. 26 plus transmission's
+ * sibling and entry pairs (docs/PHYSICS.md, "Siblings"). */
+BIREF_API void biref_spectrum_analytic_pairs(const biref_spectral *sp, const biref_slab_state *st,
+                                             biref_spectrum *out);
 
 /* General polarisation for numeric integration: incident coherency matrix C (s/p basis of the
  * incident wave, C[i][j] = <e_i conj(e_j)>, trace = incident intensity) and analyzer Jones

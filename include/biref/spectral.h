@@ -45,12 +45,13 @@ typedef enum {
     BIREF_METHOD_ANALYTIC = 0,     /* the paper's approximation, eq. 26 with m = 1 */
     BIREF_METHOD_NUMERIC = 1,      /* N uniform midpoint samples of eq. 17 */
     BIREF_METHOD_GROUND_TRUTH = 2, /* numeric with N = 16384 (paper §6) */
-    BIREF_METHOD_EXPANSION = 3     /* exact integral of the path-group expansion (beyond the paper) */
+    BIREF_METHOD_EXPANSION = 3,    /* exact integral of the path-group expansion (beyond the paper) */
+    BIREF_METHOD_ANALYTIC_PAIRS = 4 /* eq. 26 plus transmission's sibling and entry pairs (beyond the paper) */
 } biref_method;
 
 #define BIREF_GROUND_TRUTH_SAMPLES 16384
 
-/* "analytic", "numeric", "ground-truth", "expansion". */
+/* "analytic", "numeric", "ground-truth", "expansion", "analytic-pairs". */
 BIREF_API biref_status biref_method_from_name(const char *name, biref_method *out);
 BIREF_API const char *biref_method_name(biref_method m);
 

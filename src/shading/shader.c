@@ -35,10 +35,9 @@ static biref_status probe(const biref_integrator *it, const biref_light *l, char
     biref_status r = biref_slab_prepare(&slab, 0.3, &st);
     if (r == BIREF_OK) r = biref_integrate(it, &st, BIREF_SIDE_TRANSMISSION, &at, &res);
     if (r != BIREF_ERR_INVALID) return BIREF_OK;
-    static const char *const names[] = {"analytic", "numeric", "ground-truth", "expansion"};
-    const biref_method m = biref_integrator_method(it);
+    const char *name = biref_method_name(biref_integrator_method(it));
     return biref_fail(msg, msg_len, "the %s method cannot integrate this light (a general coherency or analyzer)",
-                      (unsigned)m < 4 ? names[m] : "chosen");
+                      name ? name : "chosen");
 }
 
 /* The light's packet form (packet_light.h) when its coherency is Hermitian (the kernel's form

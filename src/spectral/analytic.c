@@ -151,15 +151,17 @@ void biref_analytic_paper_energy(const biref_spectral *sp, const biref_slab_stat
 }
 
 static void transmission(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
-                         double E[2][2][3], double H[2][2][3])
+                         int pairs, double E[2][2][3], double H[2][2][3])
 {
     const double complex(*t01)[2] = st->top.t_down, (*r10)[2] = st->top.r_up;
     const double complex(*r12)[2] = st->bottom.r_down, (*t12)[2] = st->bottom.t_down;
 
     biref_phase_int h0, trip[2][2], pair[4][4], ep[4][4];
     biref_transmission_phases(sp, st, fp, &h0, trip);
-    biref_order1_pairs(sp, st, fp, pair);
-    biref_entry_pairs(sp, st, fp, ep);
+    if (pairs) {
+        biref_order1_pairs(sp, st, fp, pair);
+        biref_entry_pairs(sp, st, fp, ep);
+    }
     double W[2][2][3];
     transmission_energy(sp, st, W, E);
 
@@ -180,7 +182,8 @@ static void transmission(const biref_spectral *sp, const biref_slab_state *st, c
             for (int x = 0; x < 2; x++)
                 for (int y = 0; y < 2; y++)
                     for (int x2 = 0; x2 < 2; x2++) biref_add_re_integral(h, W[i][x], desc[x][y][x2], &trip[y][x2]);
-            /* Siblings (ours): every path arriving at the bottom in mode x, then two different
+            if (!pairs) continue; /* eq. 26 alone: the paper's analytic method */
+            /* Siblings (ours, the analytic-pairs method): every path arriving at the bottom in mode x, then two different
              * last round trips a < b (lags: reflection's order-1 pairs); and the order-1 paths
              * whose entry legs differ, (o, a) and (e, b). */
             for (int x = 0; x < 2; x++)
@@ -272,45 +275,47 @@ void biref_physical_limit(const double E[2][2][2][3], double X[2][2][2][3])
 
 /* E + 2H of the paper's terms with step 1 applied. */
 static void paper_terms(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
-                        int which, double E[2][2][3], double H[2][2][3])
+                        int which, int pairs, double E[2][2][3], double H[2][2][3])
 {
     if (which == BIREF_REFLECTION)
         reflection(sp, st, fp, E, H);
     else
-        transmission(sp, st, fp, E, H);
+        transmission(sp, st, fp, pairs, E, H);
 }
 
 static void paper_result(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
-                         int which, double E[2][2][3], double X[2][2][3])
+                         int which, int pairs, double E[2][2][3], double X[2][2][3])
 {
     double H[2][2][3];
-    paper_terms(sp, st, fp, which, E, H);
+    paper_terms(sp, st, fp, which, pairs, E, H);
     for (int i = 0; i < 2; i++)
         for (int o = 0; o < 2; o++)
             for (int j = 0; j < 3; j++) X[i][o][j] = E[i][o][j] + 2.0 * H[i][o][j];
     limit_positive(E, X);
 }
 
-void biref_analytic_paper_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
-                                double H[2][2][3])
+void biref_analytic_paper_terms(const biref_spectral *sp, const biref_slab_state *st, int which, int pairs,
+                                double E[2][2][3], double H[2][2][3])
 {
-    paper_terms(sp, st, NULL, which, E, H);
+    paper_terms(sp, st, NULL, which, pairs, E, H);
 }
 
 void biref_analytic_paper_terms_footprint(const biref_spectral *sp, const biref_slab_state *st,
-                                          const biref_opl_footprint *fp, int which, double E[2][2][3], double H[2][2][3])
+                                          const biref_opl_footprint *fp, int which, int pairs, double E[2][2][3],
+                                          double H[2][2][3])
 {
-    paper_terms(sp, st, fp, which, E, H);
+    paper_terms(sp, st, fp, which, pairs, E, H);
 }
 
-void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
-                          double H[2][2][3])
+void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, int which, int pairs,
+                          double E[2][2][3], double H[2][2][3])
 {
-    biref_analytic_terms_footprint(sp, st, NULL, which, E, H);
+    biref_analytic_terms_footprint(sp, st, NULL, which, pairs, E, H);
 }
 
 void biref_analytic_terms_footprint(const biref_spectral *sp, const biref_slab_state *st,
-                                    const biref_opl_footprint *fp, int which, double E[2][2][3], double H[2][2][3])
+                                    const biref_opl_footprint *fp, int which, int pairs, double E[2][2][3],
+                                    double H[2][2][3])
 {
     const biref_numeric_plan *coherent = biref_coherent_plan(sp, st);
     if (coherent) {
@@ -326,7 +331,7 @@ void biref_analytic_terms_footprint(const biref_spectral *sp, const biref_slab_s
      * internal reflections are strong: the result is kept physical (biref_physical_limit), which
      * needs both directions. H is adjusted so that E + 2H stays the result. */
     double Ed[2][2][2][3], X[2][2][2][3];
-    for (int d = 0; d < 2; d++) paper_result(sp, st, fp, d, Ed[d], X[d]);
+    for (int d = 0; d < 2; d++) paper_result(sp, st, fp, d, pairs, Ed[d], X[d]);
     normalize_energy(X);
     memcpy(E, Ed[which], sizeof Ed[which]);
     for (int i = 0; i < 2; i++)
@@ -336,11 +341,16 @@ void biref_analytic_terms_footprint(const biref_spectral *sp, const biref_slab_s
 
 void biref_spectrum_analytic(const biref_spectral *sp, const biref_slab_state *st, biref_spectrum *out)
 {
-    biref_spectrum_analytic_footprint(sp, st, NULL, out);
+    biref_spectrum_analytic_footprint(sp, st, NULL, 0, out);
+}
+
+void biref_spectrum_analytic_pairs(const biref_spectral *sp, const biref_slab_state *st, biref_spectrum *out)
+{
+    biref_spectrum_analytic_footprint(sp, st, NULL, 1, out);
 }
 
 void biref_spectrum_analytic_footprint(const biref_spectral *sp, const biref_slab_state *st,
-                                       const biref_opl_footprint *fp, biref_spectrum *out)
+                                       const biref_opl_footprint *fp, int pairs, biref_spectrum *out)
 {
     const biref_numeric_plan *coherent = biref_coherent_plan(sp, st);
     if (coherent) {
@@ -348,7 +358,7 @@ void biref_spectrum_analytic_footprint(const biref_spectral *sp, const biref_sla
         return;
     }
     double E[2][2][2][3], X[2][2][2][3];
-    for (int d = 0; d < 2; d++) paper_result(sp, st, fp, d, E[d], X[d]); /* eqs. 25-26 */
+    for (int d = 0; d < 2; d++) paper_result(sp, st, fp, d, pairs, E[d], X[d]); /* eqs. 25-26 */
     normalize_energy(X);
     memcpy(out->T, X[BIREF_TRANSMISSION], sizeof out->T);
     memcpy(out->R, X[BIREF_REFLECTION], sizeof out->R);

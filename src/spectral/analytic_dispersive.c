@@ -139,10 +139,11 @@ static biref_status run_method(const biref_integrator *it, dispersive_plan *pl, 
     memset(pl->ld.order_seen, 0, sizeof pl->ld.order_seen);
     const biref_slab_state *st = &pl->run[r].st;
     if (biref_integrator_method(it) != BIREF_METHOD_EXPANSION) {
+        const int pairs = biref_integrator_method(it) == BIREF_METHOD_ANALYTIC_PAIRS;
         if (C)
-            biref_analytic_general(sp, st, &fp, which, C, P, x->T[0][0]);
+            biref_analytic_general(sp, st, &fp, which, pairs, C, P, x->T[0][0]);
         else
-            biref_spectrum_analytic_footprint(sp, st, &fp, x);
+            biref_spectrum_analytic_footprint(sp, st, &fp, pairs, x);
         return BIREF_OK;
     }
     const biref_expansion_opts *o = biref_integrator_expansion_opts(it);

@@ -48,13 +48,16 @@ static void exit_matrix(const double complex (*t)[2], const double complex (*P)[
 }
 
 static void transmission(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
-                         const double complex C[2][2], const double complex (*P)[2], double E[3], double H[3])
+                         int pairs, const double complex C[2][2], const double complex (*P)[2], double E[3],
+                         double H[3])
 {
     const double complex(*r10)[2] = st->top.r_up, (*r12)[2] = st->bottom.r_down;
     biref_phase_int h0, trip[2][2], pair[4][4], ep[4][4];
     biref_transmission_phases(sp, st, fp, &h0, trip);
-    biref_order1_pairs(sp, st, fp, pair);
-    biref_entry_pairs(sp, st, fp, ep);
+    if (pairs) {
+        biref_order1_pairs(sp, st, fp, pair);
+        biref_entry_pairs(sp, st, fp, ep);
+    }
 
     double complex Ein[2][2], TP[2][2], Xout[2][2];
     entry_matrix(C, st->top.t_down, Ein);
@@ -78,7 +81,8 @@ static void transmission(const biref_spectral *sp, const biref_slab_state *st, c
         for (int x2 = 0; x2 < 2; x2++)
             for (int x = 0; x < 2; x++)
                 biref_add_re_integral(H, W[0][x], r12[x][y] * r10[y][x2] * Xout[x][x2], &trip[y][x2]);
-    /* Siblings (analytic.c): from the bottom in mode x, two last round trips a < b, a = (down x2,
+    if (!pairs) return; /* eq. 26 alone: the paper's analytic method */
+    /* Siblings (analytic.c; the analytic-pairs method): from the bottom in mode x, two last round trips a < b, a = (down x2,
      * up y), with the lags of reflection's order-1 pairs. */
     for (int x = 0; x < 2; x++)
         for (int a = 0; a < 4; a++)
@@ -148,17 +152,18 @@ static void reflection(const biref_spectral *sp, const biref_slab_state *st, con
 }
 
 void biref_analytic_general_terms(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
-                                  int which, const double complex C[2][2], const double complex P[2][2], double E[3],
-                                  double H[3])
+                                  int which, int pairs, const double complex C[2][2], const double complex P[2][2],
+                                  double E[3], double H[3])
 {
     if (which == BIREF_REFLECTION)
         reflection(sp, st, fp, C, P, E, H);
     else
-        transmission(sp, st, fp, C, P, E, H);
+        transmission(sp, st, fp, pairs, C, P, E, H);
 }
 
 void biref_analytic_general(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
-                            int which, const double complex C[2][2], const double complex P[2][2], double xyz[3])
+                            int which, int pairs, const double complex C[2][2], const double complex P[2][2],
+                            double xyz[3])
 {
     const biref_numeric_plan *coherent = biref_coherent_plan(sp, st);
     if (coherent) {
@@ -167,7 +172,7 @@ void biref_analytic_general(const biref_spectral *sp, const biref_slab_state *st
         return;
     }
     double E[3], H[3];
-    biref_analytic_general_terms(sp, st, fp, which, C, P, E, H);
+    biref_analytic_general_terms(sp, st, fp, which, pairs, C, P, E, H);
     double t = 1.0;
     for (int j = 0; j < 3; j++) {
         xyz[j] = E[j] + 2.0 * H[j]; /* eqs. 25-26 */

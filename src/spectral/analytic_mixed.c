@@ -45,7 +45,7 @@ static inline void add_1(double out[3], double complex coef, const phase_term *p
 }
 
 /* E and X = E + 2H (eqs. 19-26) of both directions, [direction][in][out][band]. */
-static void paper_both(const biref_spectral *sp, const biref_slab_state *st, double E[2][2][2][3],
+static void paper_both(const biref_spectral *sp, const biref_slab_state *st, int pairs, double E[2][2][2][3],
                        double X[2][2][2][3])
 {
     const double complex(*t01)[2] = st->top.t_down, (*r10)[2] = st->top.r_up;
@@ -78,9 +78,10 @@ static void paper_both(const biref_spectral *sp, const biref_slab_state *st, dou
     int any_p1 = !p1[0].zero || !p1[1].zero || !p1[2].zero || !p1[3].zero;
     /* Transmission's order-1 pairs whose entry legs differ (biref_entry_pairs). */
     phase_term ep[4][4];
-    for (int a = 0; a < 4; a++)
-        for (int b = 0; b < 4; b++)
-            phase_at(sp, (od[1] + od[b >> 1] + ou[b & 1]) - conj(od[0] + od[a >> 1] + ou[a & 1]), &ep[a][b]);
+    if (pairs)
+        for (int a = 0; a < 4; a++)
+            for (int b = 0; b < 4; b++)
+                phase_at(sp, (od[1] + od[b >> 1] + ou[b & 1]) - conj(od[0] + od[a >> 1] + ou[a & 1]), &ep[a][b]);
 
     double ed[2][3], eu[2][3];
     for (int k = 0; k < 2; k++) biref_leg_energy(sp, od[k], ed[k]), biref_leg_energy(sp, ou[k], eu[k]);
@@ -99,8 +100,9 @@ static void paper_both(const biref_spectral *sp, const biref_slab_state *st, dou
                     for (int y = 0; y < 2; y++)
                         for (int x2 = 0; x2 < 2; x2++)
                             desc[x][y][x2] = conj(t12[x][o]) * r12[x][y] * r10[y][x2] * t12[x2][o];
-            for (int x = 0; x < 2; x++)
-                for (int a = 0; a < 4; a++) last[x][a] = r12[x][a & 1] * r10[a & 1][a >> 1] * t12[a >> 1][o];
+            if (pairs)
+                for (int x = 0; x < 2; x++)
+                    for (int a = 0; a < 4; a++) last[x][a] = r12[x][a & 1] * r10[a & 1][a >> 1] * t12[a >> 1][o];
             for (int i = 0; i < 2; i++) {
                 double h[3] = {0.0, 0.0, 0.0};
                 if (!h0.zero) add_1(h, conj(t01[i][0] * t12[0][o]) * t01[i][1] * t12[1][o], &h0);
@@ -111,14 +113,16 @@ static void paper_both(const biref_spectral *sp, const biref_slab_state *st, dou
                                 const phase_term *p = &p1[(x2 << 1) | y]; /* down x2 + up y */
                                 if (!p->zero) add_w(h, W[i][x], desc[x][y][x2], p);
                             }
-                for (int x = 0; x < 2; x++) /* siblings: two last round trips a < b */
+                if (pairs) { /* analytic-pairs: siblings, two last round trips a < b; entry pairs */
+                    for (int x = 0; x < 2; x++)
+                        for (int a = 0; a < 4; a++)
+                            for (int b = a + 1; b < 4; b++)
+                                if (!pair[a][b].zero) add_w(h, W[i][x], conj(last[x][a]) * last[x][b], &pair[a][b]);
+                    const double complex ent = conj(t01[i][0]) * t01[i][1];
                     for (int a = 0; a < 4; a++)
-                        for (int b = a + 1; b < 4; b++)
-                            if (!pair[a][b].zero) add_w(h, W[i][x], conj(last[x][a]) * last[x][b], &pair[a][b]);
-                const double complex ent = conj(t01[i][0]) * t01[i][1];
-                for (int a = 0; a < 4; a++)
-                    for (int b = 0; b < 4; b++)
-                        if (!ep[a][b].zero) add_1(h, ent * conj(last[0][a]) * last[1][b], &ep[a][b]);
+                        for (int b = 0; b < 4; b++)
+                            if (!ep[a][b].zero) add_1(h, ent * conj(last[0][a]) * last[1][b], &ep[a][b]);
+                }
                 for (int j = 0; j < 3; j++) {
                     double e = W[i][0][j] * biref_abs2(t12[0][o]) + W[i][1][j] * biref_abs2(t12[1][o]);
                     E[BIREF_TRANSMISSION][i][o][j] = e;
@@ -167,19 +171,19 @@ static void paper_both(const biref_spectral *sp, const biref_slab_state *st, dou
     }
 }
 
-void biref_analytic_mixed(const biref_spectral *sp, const biref_slab_state *st, int which, const double w_in[2],
+void biref_analytic_mixed(const biref_spectral *sp, const biref_slab_state *st, int which, int pairs, const double w_in[2],
                           const double out_mask[2], double xyz[3])
 {
     double E[2][2][2][3], X[2][2][2][3];
     if (biref_coherent_plan(sp, st)) {
         /* Thin slab or evanescent coupling: the exact integral, as analytic.c does. */
         double H[2][2][3];
-        biref_analytic_terms(sp, st, which, E[which], H);
+        biref_analytic_terms(sp, st, which, pairs, E[which], H);
         for (int i = 0; i < 2; i++)
             for (int o = 0; o < 2; o++)
                 for (int j = 0; j < 3; j++) X[which][i][o][j] = E[which][i][o][j] + 2.0 * H[i][o][j];
     } else {
-        paper_both(sp, st, E, X);
+        paper_both(sp, st, pairs, E, X);
         biref_physical_limit(E, X);
     }
     biref_spectrum_mix(X[which], w_in, out_mask, xyz);

@@ -99,3 +99,22 @@ biref_packet_hits_kernel biref_simd_hits_kernel_f64(biref_simd_isa isa)
     default: return NULL;
     }
 }
+
+biref_packet_hits_kernel biref_simd_hits_kernel_pairs(biref_simd_isa isa)
+{
+    switch (isa) {
+    case BIREF_SIMD_AVX2: return biref_packet_hits_f32_pairs_avx2;
+    case BIREF_SIMD_AVX512: return biref_packet_hits_f32_pairs_avx512;
+    default: return biref_simd_hits_kernel_f64_pairs(isa);
+    }
+}
+
+biref_packet_hits_kernel biref_simd_hits_kernel_f64_pairs(biref_simd_isa isa)
+{
+    switch (isa) {
+    case BIREF_SIMD_BASELINE: return biref_packet_hits_pairs_baseline;
+    case BIREF_SIMD_AVX2: return biref_packet_hits_pairs_avx2;
+    case BIREF_SIMD_AVX512: return biref_packet_hits_pairs_avx512;
+    default: return NULL;
+    }
+}

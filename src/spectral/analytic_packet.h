@@ -103,6 +103,24 @@ void biref_packet_hits_f32_avx512(const biref_spectral *sp, const double w_in[2]
                                   unsigned char *scalar, const biref_opl_footprint *fp,
                                   const biref_packet_hit_light *lights);
 
+/* The same kernels for the analytic-pairs method (PACKET_PAIRS 1: eq. 26 plus transmission's
+ * siblings and entry pairs), compiled from the same sources (analytic_packet_pairs_*.c). */
+void biref_packet_hits_pairs_baseline(const biref_spectral *sp, const double w_in[2], const double mask[2],
+    const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3], unsigned char *scalar,
+    const biref_opl_footprint *fp, const biref_packet_hit_light *lights);
+void biref_packet_hits_pairs_avx2(const biref_spectral *sp, const double w_in[2], const double mask[2],
+    const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3], unsigned char *scalar,
+    const biref_opl_footprint *fp, const biref_packet_hit_light *lights);
+void biref_packet_hits_pairs_avx512(const biref_spectral *sp, const double w_in[2], const double mask[2],
+    const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3], unsigned char *scalar,
+    const biref_opl_footprint *fp, const biref_packet_hit_light *lights);
+void biref_packet_hits_f32_pairs_avx2(const biref_spectral *sp, const double w_in[2], const double mask[2],
+    const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3], unsigned char *scalar,
+    const biref_opl_footprint *fp, const biref_packet_hit_light *lights);
+void biref_packet_hits_f32_pairs_avx512(const biref_spectral *sp, const double w_in[2], const double mask[2],
+    const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3], unsigned char *scalar,
+    const biref_opl_footprint *fp, const biref_packet_hit_light *lights);
+
 /* The instruction sets, fastest last. */
 typedef enum {
     BIREF_SIMD_SCALAR = 0, /* no packets: every state through the scalar worker */
@@ -130,6 +148,9 @@ biref_packet_hits_kernel biref_simd_hits_kernel(biref_simd_isa isa);
 /* The double kernel of a path (NULL for BIREF_SIMD_SCALAR): the reference the float lanes are
  * checked against. */
 biref_packet_hits_kernel biref_simd_hits_kernel_f64(biref_simd_isa isa);
+/* The same two for the analytic-pairs method. */
+biref_packet_hits_kernel biref_simd_hits_kernel_pairs(biref_simd_isa isa);
+biref_packet_hits_kernel biref_simd_hits_kernel_f64_pairs(biref_simd_isa isa);
 
 /* Can the packet kernel take this state? Real coefficients and paths (no evanescent mode) and
  * not in the coherent regime (biref_coherent_plan(sp, st) == NULL). The same for the flipped

@@ -95,13 +95,15 @@ void biref_entry_pairs(const biref_spectral *sp, const biref_slab_state *st, con
  * averaged over the footprint fp (NULL: point values). The shader's formulas (docs/GPU.md); a
  * negative result is moved towards the incoherent path energy. */
 void biref_analytic_general(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
-                            int which, const double complex C[2][2], const double complex P[2][2], double xyz[3]);
+                            int which, int pairs, const double complex C[2][2], const double complex P[2][2],
+                            double xyz[3]);
 /* Its two terms, S = E + 2H (eqs. 19, 25), in every regime and without the limit (tests). */
 void biref_analytic_general_terms(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
-                                  int which, const double complex C[2][2], const double complex P[2][2], double E[3],
+                                  int which, int pairs, const double complex C[2][2], const double complex P[2][2], double E[3],
                                   double H[3]);
 /* biref_analytic_paper_terms with every phase integral averaged over the footprint fp (tests). */
 void biref_analytic_paper_terms_footprint(const biref_spectral *sp, const biref_slab_state *st,
-                                          const biref_opl_footprint *fp, int which, double E[2][2][3], double H[2][2][3]);
+                                          const biref_opl_footprint *fp, int which, int pairs, double E[2][2][3],
+                                          double H[2][2][3]);
 
 #endif

@@ -36,6 +36,7 @@ typedef biref_status (*stack_worker)(const biref_integrator *it, const biref_sta
 struct biref_integrator {
     const biref_spectral *sp;
     biref_method method;
+    int pairs; /* BIREF_METHOD_ANALYTIC_PAIRS: the analytic terms with transmission's pairs */
     biref_expansion_opts xopts;
     biref_numeric_plan *plan; /* numeric methods */
     side_worker side;
@@ -60,21 +61,21 @@ static biref_status side_analytic(const biref_integrator *it, const biref_slab_s
                                   const biref_light *l, double xyz[3], int *order_used)
 {
     if (!l->sp_model) {
-        biref_analytic_general(it->sp, st, fp, which, (const double complex(*)[2])l->C,
+        biref_analytic_general(it->sp, st, fp, which, it->pairs, (const double complex(*)[2])l->C,
                                l->has_analyzer ? (const double complex(*)[2])l->P : NULL, xyz);
         return BIREF_OK;
     }
     if (fp) {
         /* Prefiltered phase integrals: eq. 25 per pair with the averaged look-ups, then mixed. */
         double E[2][2][3], H[2][2][3], X[2][2][3];
-        biref_analytic_terms_footprint(it->sp, st, fp, which, E, H);
+        biref_analytic_terms_footprint(it->sp, st, fp, which, it->pairs, E, H);
         for (int i = 0; i < 2; i++)
             for (int o = 0; o < 2; o++)
                 for (int j = 0; j < 3; j++) X[i][o][j] = E[i][o][j] + 2.0 * H[i][o][j];
         biref_spectrum_mix(X, l->w_in, l->mask, xyz);
         return BIREF_OK;
     }
-    biref_analytic_mixed(it->sp, st, which, l->w_in, l->mask, xyz);
+    biref_analytic_mixed(it->sp, st, which, it->pairs, l->w_in, l->mask, xyz);
     return BIREF_OK;
 }
 
@@ -120,6 +121,7 @@ static biref_status check_options(const biref_integrator_options *o, char *msg, 
 {
     switch (o->method) {
     case BIREF_METHOD_ANALYTIC:
+    case BIREF_METHOD_ANALYTIC_PAIRS:
     case BIREF_METHOD_GROUND_TRUTH: return BIREF_OK;
     case BIREF_METHOD_NUMERIC:
         if (o->samples >= 1 && o->samples <= BIREF_NUMERIC_MAX_SAMPLES) return BIREF_OK;
@@ -156,9 +158,13 @@ biref_status biref_integrator_create(const biref_spectral *sp, const biref_integ
     it->xopts = o->expansion;
     switch (o->method) {
     case BIREF_METHOD_ANALYTIC:
+    case BIREF_METHOD_ANALYTIC_PAIRS:
+        /* The two analytic methods differ only in transmission's sibling and entry pairs: one
+         * flag for the scalar workers, a kernel compiled with or without them for the packets. */
+        it->pairs = o->method == BIREF_METHOD_ANALYTIC_PAIRS;
         it->side = side_analytic;
         it->isa = isa;
-        it->hits = biref_simd_hits_kernel(isa);
+        it->hits = it->pairs ? biref_simd_hits_kernel_pairs(isa) : biref_simd_hits_kernel(isa);
         it->stack = stack_closed_form;
         break;
     case BIREF_METHOD_EXPANSION:
@@ -232,6 +238,7 @@ biref_status biref_integrate_spectrum(const biref_integrator *it, const biref_sl
     biref_status s = BIREF_OK;
     switch (it->method) {
     case BIREF_METHOD_ANALYTIC: biref_spectrum_analytic(it->sp, st, out); break;
+    case BIREF_METHOD_ANALYTIC_PAIRS: biref_spectrum_analytic_pairs(it->sp, st, out); break;
     case BIREF_METHOD_EXPANSION: s = biref_spectrum_expansion(it->sp, st, &it->xopts, out); break;
     default: biref_spectrum_numeric(it->plan, st, out); break;
     }

@@ -53,7 +53,8 @@ void biref_phase_integrals_footprint(const biref_spectral *sp, const biref_opl_f
  * (biref_spectrum_expansion_polarized) with every phase integral averaged over the footprint fp
  * (NULL: identical to the unfiltered functions). */
 void biref_analytic_terms_footprint(const biref_spectral *sp, const biref_slab_state *st,
-                                    const biref_opl_footprint *fp, int which, double E[2][2][3], double H[2][2][3]);
+                                    const biref_opl_footprint *fp, int which, int pairs, double E[2][2][3],
+                                    double H[2][2][3]);
 biref_status biref_expansion_polarized_footprint(const biref_spectral *sp, const biref_slab_state *st,
                                                  const biref_opl_footprint *fp, int which, const double complex C[2][2],
                                                  const double complex P[2][2], const biref_expansion_opts *opts,
@@ -62,7 +63,7 @@ biref_status biref_expansion_polarized_footprint(const biref_spectral *sp, const
 /* The four pairs of both directions (biref_spectrum_analytic, biref_spectrum_expansion) with the
  * phase integrals through the footprint fp (NULL: identical to the plain functions). */
 void biref_spectrum_analytic_footprint(const biref_spectral *sp, const biref_slab_state *st,
-                                       const biref_opl_footprint *fp, biref_spectrum *out);
+                                       const biref_opl_footprint *fp, int pairs, biref_spectrum *out);
 biref_status biref_spectrum_expansion_footprint(const biref_spectral *sp, const biref_slab_state *st,
                                                 const biref_opl_footprint *fp, const biref_expansion_opts *opts,
                                                 biref_spectrum *out);

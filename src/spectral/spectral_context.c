@@ -23,7 +23,7 @@ void biref_spectral_config_default(biref_spectral_config *cfg)
     cfg->lambda_max_nm = BIREF_CMF_DEFAULT_LMAX_NM;
 }
 
-static const char *const METHOD_NAMES[] = {"analytic", "numeric", "ground-truth", "expansion"};
+static const char *const METHOD_NAMES[] = {"analytic", "numeric", "ground-truth", "expansion", "analytic-pairs"};
 #define N_METHODS ((int)(sizeof METHOD_NAMES / sizeof METHOD_NAMES[0]))
 
 biref_status biref_method_from_name(const char *name, biref_method *out)

@@ -151,14 +151,16 @@ void biref_numeric_hit(const biref_numeric_plan *plan, const biref_slab_state *s
                        const double complex P[2][2], double T[3], double R[3]);
 
 /* The two terms of the analytic approximation, S(|J|^2) ~ E + 2 H (eqs. 19, 25), for
- * which = BIREF_TRANSMISSION or BIREF_REFLECTION, indexed [in][out][band]. In the coherent
+ * which = BIREF_TRANSMISSION or BIREF_REFLECTION, indexed [in][out][band]; pairs 0: the paper's
+ * eq. 26 (BIREF_METHOD_ANALYTIC), 1: plus transmission's sibling and entry pairs
+ * (BIREF_METHOD_ANALYTIC_PAIRS), here and in every analytic function taking it. In the coherent
  * regime (biref_coherent_plan) E is the exact integral and H is 0. */
-void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
-                          double H[2][2][3]);
+void biref_analytic_terms(const biref_spectral *sp, const biref_slab_state *st, int which, int pairs,
+                          double E[2][2][3], double H[2][2][3]);
 
 /* sum_{i,o} w_in[i] out_mask[o] (E + 2 H)[i][o] of biref_analytic_terms, the same quantity with
  * the weights folded in before the band integrals (src/spectral/analytic_mixed.c). */
-void biref_analytic_mixed(const biref_spectral *sp, const biref_slab_state *st, int which, const double w_in[2],
+void biref_analytic_mixed(const biref_spectral *sp, const biref_slab_state *st, int which, int pairs, const double w_in[2],
                           const double out_mask[2], double xyz[3]);
 
 /* Makes a result X [direction T/R][in][out][band] physical given the incoherent path energies E
@@ -170,9 +172,10 @@ void biref_physical_limit(const double E[2][2][2][3], double X[2][2][2][3]);
  * energy balance's reference (biref_physical_limit), without the look-ups of H. */
 void biref_analytic_paper_energy(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3]);
 
-/* The paper's terms as printed (eqs. 20-26, m = 1), in every regime (tests of the formulas). */
-void biref_analytic_paper_terms(const biref_spectral *sp, const biref_slab_state *st, int which, double E[2][2][3],
-                                double H[2][2][3]);
+/* The paper's terms as printed (eqs. 20-26, m = 1; pairs 1: with the siblings), in every regime
+ * (tests of the formulas). */
+void biref_analytic_paper_terms(const biref_spectral *sp, const biref_slab_state *st, int which, int pairs,
+                                double E[2][2][3], double H[2][2][3]);
 
 /* The path-group series of biref_spectrum_expansion(_polarized) in every regime, without the
  * switch to the exact integral in the coherent regime (tests of the series). */

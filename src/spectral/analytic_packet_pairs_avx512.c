@@ -1,0 +1,6 @@
+/* The packet kernel of the analytic-pairs method for avx512 (analytic_packet_avx512.c with the
+ * siblings and entry pairs compiled in). */
+#define PACKET_PAIRS 1
+#include "spectral/simd/avx512.h"
+#define PACKET_HITS_FN biref_packet_hits_pairs_avx512
+#include "spectral/analytic_packet_kernel.inc"

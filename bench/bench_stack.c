@@ -49,7 +49,9 @@ static double time_call(const biref_spectral *sp, const biref_stack_state *st, c
 int main(int argc, char **argv)
 {
     const int json = argc > 1 && !strcmp(argv[1], "--json");
-    static const char *const names[] = {"lyot_stage1", "film_on_glass", "solc_folded", "cellophane3"};
+    static const char *const names[] = {"lyot_stage1", "film_on_glass",
+                                        "solc_folded", "cellophane3",
+                                        "quartz_zero_order_halfwave", "quartz_multi_order_halfwave"};
     biref_spectral *sp;
     if (biref_spectral_create(NULL, &sp, NULL, 0) != BIREF_OK) return 1;
     biref_light light;
@@ -57,7 +59,7 @@ int main(int argc, char **argv)
     biref_light_sp(s_only, p_only, &light);
     if (json) printf("[\n");
     int first = 1;
-    for (int e = 0; e < 4; e++) {
+    for (int e = 0; e < (int)(sizeof names / sizeof names[0]); e++) {
         char path[256], msg[BIREF_MSG_SIZE];
         snprintf(path, sizeof path, "examples/stacks/%s.json", names[e]);
         biref_stack s;
@@ -83,7 +85,7 @@ int main(int argc, char **argv)
                        first ? "" : ",\n", names[e], a, 1e3 * tx, 1e3 * tn, 1e3 * tg, info.groups[0], info.groups[1],
                        info.fallback ? "true" : "false");
             else
-                printf("%-14s %2d deg: expansion %8.3f ms (%4d + %4d groups%s)  numeric-64 %7.3f ms  ground truth "
+                printf("%-27s %2d deg: expansion %8.3f ms (%4d + %4d groups%s)  numeric-64 %7.3f ms  ground truth "
                        "%8.3f ms\n",
                        names[e], a, 1e3 * tx, info.groups[0], info.groups[1], info.fallback ? ", FALLBACK" : "",
                        1e3 * tn, 1e3 * tg);

@@ -47,7 +47,7 @@ static void path_groups_sum_to_the_exact_jones_matrices(void)
         biref_stack_state st;
         CHECK(biref_stack_prepare(&s, theta, &st) == BIREF_OK);
         biref_stack_groups g;
-        CHECK(biref_stack_path_groups(&st, NULL, 1e-5, 1 << 14, &g) == BIREF_OK);
+        CHECK(biref_stack_path_groups(&st, NULL, NULL, 1e-5, 1 << 14, &g) == BIREF_OK);
         if (g.reason) continue;
         used++;
         CHECK(g.bound <= 1e-5);

@@ -25,3 +25,8 @@ void biref_render_camera_init(render_camera *c, const biref_camera *cam)
     c->tan_half_v = tan(0.5 * cam->fov_deg * M_PI / 180.0);
     c->tan_half_h = c->tan_half_v * (double)cam->width / (double)cam->height;
 }
+
+void biref_render_camera_columns(const render_camera *c, double *sx)
+{
+    for (int x = 0; x < c->width; x++) sx[x] = render_camera_sx(c, x + 0.5);
+}

@@ -141,6 +141,12 @@ biref_status biref_renderer_create(const biref_spectral *sp, const biref_scene *
     panels_init(r, scene);
     env_init(&r->env, &scene->env);
     r->tile_isa = biref_render_tile_isa();
+    r->centre_sx = malloc((size_t)r->cam.width * sizeof *r->centre_sx);
+    if (!r->centre_sx) {
+        biref_renderer_destroy(r);
+        return biref_fail_status(BIREF_ERR_NOMEM, msg, msg_len, "out of memory");
+    }
+    biref_render_camera_columns(&r->cam, r->centre_sx);
 
     biref_integrator_options io;
     biref_integrator_options_default(&io);
@@ -165,6 +171,7 @@ void biref_renderer_destroy(biref_renderer *r)
     if (!r) return;
     biref_shader_destroy(r->shader);
     biref_phase_prefilter_destroy(r->prefilter);
+    free(r->centre_sx);
     free(r);
 }
 
@@ -203,12 +210,10 @@ static void render_centres(const biref_renderer *r, render_tile *tile, int x0, i
         tile->fx[j] = x0 + j + 0.5;
         tile->fy[j] = y + 0.5;
     }
+    tile->sx = r->centre_sx + x0;
+    tile->sy = render_camera_sy(&r->cam, y + 0.5);
+    tile->out = out;
     biref_render_tile(r, tile, counts);
-    const double e = r->exposure;
-    for (int j = 0; j < tile->n; j++) {
-        counts->slab_pixels += tile->slab[j] >= 0.0;
-        for (int c = 0; c < 3; c++) out[3 * (size_t)j + c] = stored(tile->xyz[c][j] * e, &counts->nonfinite);
-    }
 }
 
 /* Pixels x0 .. x0 + np - 1 of row y, stored from out, K x K stratified jittered samples each (K > 1),
@@ -223,6 +228,8 @@ static void render_pixels(const biref_renderer *r, render_tile *tile, int x0, in
     double acc[RENDER_TILE][3] = {{0}};
     int hit[RENDER_TILE] = {0};
     tile->h = h;
+    tile->sx = NULL;
+    tile->out = NULL;
     for (int done = 0, total = np * KK; done < total; done += tile->n) {
         tile->n = total - done < RENDER_TILE ? total - done : RENDER_TILE;
         for (int j = 0; j < tile->n; j++) {

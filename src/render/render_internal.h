@@ -58,10 +58,26 @@ struct biref_renderer {
     biref_shader *shader;             /* the method's integrator under the scene's light */
     biref_phase_prefilter *prefilter; /* antialias prefilter: analytic and expansion */
     int tile_isa;                     /* biref_render_tile_isa */
+    double *centre_sx; /* per column: render_camera_sx of its pixel centres (biref_render_camera_columns) */
 };
 
 /* camera.c */
 void biref_render_camera_init(render_camera *c, const biref_camera *cam);
+/* sx[x] = render_camera_sx(c, x + 0.5) for every column x: a row of pixel centres costs the tiles
+ * no division per pixel. Neither offset has a multiply-add to contract, so the table holds the bits
+ * the tiles would compute. */
+void biref_render_camera_columns(const render_camera *c, double *sx);
+
+/* The image-plane offsets (at unit distance, along right and up) of the image point (fx, fy), in
+ * pixels: the one expression of the tiles, their footprints and the column table. */
+static inline double render_camera_sx(const render_camera *c, double fx)
+{
+    return (2.0 * fx / c->width - 1.0) * c->tan_half_h;
+}
+static inline double render_camera_sy(const render_camera *c, double fy)
+{
+    return (1.0 - 2.0 * fy / c->height) * c->tan_half_v;
+}
 
 /* footprint.c: the change of each leg type's optical path between the unit ray dir and the unit
  * rays dir_x (right) and dir_y (below) of the neighbouring samples on the slab sl, in its

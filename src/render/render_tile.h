@@ -26,6 +26,14 @@ typedef struct {
     int n;                 /* samples 0 .. n - 1 */
     double fx[RENDER_TILE], fy[RENDER_TILE]; /* their image points, in pixels (pixel (x, y) spans [x, x + 1)) */
     double h;              /* the prefilter's step to the neighbouring samples, in pixels (1 / K) */
+    /* A row of pixel centres, one sample per pixel (NULL otherwise): the samples' image-plane offsets
+     * sx (the renderer's column table from the first sample's column) and the row's sy, so that the
+     * rays need no division by the image size; fx and fy are still filled in for the footprints. */
+    const double *sx;
+    double sy;
+    /* NULL, or one sample per pixel: sample j's colour times the exposure is stored as pixel j's
+     * float XYZ from out (a value not finite or beyond float range as 0, counted as nonfinite). */
+    float *out;
     render_lanes3 dir;     /* unit camera rays */
     double t[RENDER_TILE];    /* distance to the nearest slab */
     double slab[RENDER_TILE]; /* its index in the renderer, -1: none (a double to vectorise with t) */
@@ -53,7 +61,7 @@ typedef struct {
     long slab_pixels, fallbacks, nonfinite;
 } render_tile_counts;
 
-/* Shades the tile's samples (n, fx, fy and h filled in) into tile->xyz, with point or prefiltered
+/* Shades the tile's samples (n, fx, fy, h, sx, sy and out filled in) into tile->xyz (and out), with point or prefiltered
  * look-ups, with the instruction set the renderer chose (r->tile_isa; every one gives the same
  * bits); a sample hit a slab when tile->slab[j] >= 0. counts->fallbacks counts the hits whose
  * evaluation failed (shown as a mirror). */

@@ -28,8 +28,8 @@ static void leg_paths(const double n[2], const double axis[3], double K, double 
 
 /* The legs' paths at λ and their derivatives dopl/dλ: a central difference ±DIFF_NM in λ taken
  * through the indices' slopes dn/dλ = (n − n_g)/λ (one evaluation of the material). */
-static biref_status paths_and_slopes(const biref_material *m, const double axis[3], double K, double d, double lambda,
-                                     double opl[4], double dopl[4])
+biref_status biref_leg_paths_and_slopes(const biref_material *m, const double axis[3], double K, double d,
+                                        double lambda, double opl[4], double dopl[4])
 {
     double n[2], ng[2];
     biref_status s = biref_material_indices(m, lambda, n, ng);
@@ -52,7 +52,7 @@ static void sample(biref_leg_dispersion *ld, int p)
 {
     const double k = biref_subband_points(ld->sb)[p], lambda = 2.0 * M_PI / k;
     double opl[4], dopl[4];
-    biref_status s = paths_and_slopes(ld->m, ld->axis, ld->K, ld->d, lambda, opl, dopl);
+    biref_status s = biref_leg_paths_and_slopes(ld->m, ld->axis, ld->K, ld->d, lambda, opl, dopl);
     if (s != BIREF_OK && ld->failed == BIREF_OK) ld->failed = s;
     for (int l = 0; l < 4; l++) {
         /* φ = k opl, φ' = d(k opl)/dk = opl − λ dopl/dλ: the group path */
@@ -91,7 +91,7 @@ biref_status biref_leg_dispersion_init(const biref_spectral *sp, const biref_mat
 
 /* The largest distance of the lag's phase Phi from the tangent at each sub-band's midpoint, at the
  * sub-band's two edges (level L: 2^L sub-bands over the sample points). */
-static double level_residual(const double *Phi, const double *G, const double *k, int level)
+double biref_subband_level_residual(const double *Phi, const double *G, const double *k, int level)
 {
     const int span = (BIREF_SUBBAND_POINTS - 1) >> level;
     double worst = 0.0;
@@ -116,8 +116,8 @@ static void lag_at(biref_leg_dispersion *ld, const int n[4], int p, double *Phi,
 
 /* The tangent of sub-band b of `level` (level 0: the whole range) at its midpoint: the offset
  * e^{i(Φ(k_b) − k_b G_b)} and the group path G_b. */
-static void tangent(const double *Phi, const double *G, const double *k, int level, int b, double complex *rot,
-                    double *g)
+void biref_subband_tangent(const double *Phi, const double *G, const double *k, int level, int b,
+                           double complex *rot, double *g)
 {
     const int span = (BIREF_SUBBAND_POINTS - 1) >> level, mid = b * span + span / 2;
     *g = G[mid];
@@ -126,14 +126,14 @@ static void tangent(const double *Phi, const double *G, const double *k, int lev
 
 /* The sums over the 2^level sub-bands of their tangents' integrals: m0 = S(e^{iΦ}, Λ_j) and
  * m1 = S(k e^{iΦ}, Λ_j). */
-static void subband_sum(const biref_subbands *sb, const double *Phi, const double *G, const double *k, int level,
-                        double complex m0[3], double complex m1[3])
+void biref_subband_sum(const biref_subbands *sb, const double *Phi, const double *G, const double *k, int level,
+                       double complex m0[3], double complex m1[3])
 {
     for (int j = 0; j < 3; j++) m0[j] = m1[j] = 0.0;
     for (int b = 0; b < (1 << level); b++) {
         double complex rot, t[3], tk[3];
         double g;
-        tangent(Phi, G, k, level, b, &rot, &g);
+        biref_subband_tangent(Phi, G, k, level, b, &rot, &g);
         biref_subband_eval_moment(sb, level, b, g, t, tk);
         for (int j = 0; j < 3; j++) m0[j] += rot * t[j];
         for (int j = 0; j < 3; j++) m1[j] += rot * tk[j];
@@ -204,14 +204,15 @@ void biref_lag_integrals(const biref_spectral *sp, biref_leg_dispersion *ld, dou
     lag_at(ld, n, last / 2, Phi, G);
     lag_at(ld, n, last, Phi, G);
     int level = 0;
-    double res = level_residual(Phi, G, k, 0);
+    double res = biref_subband_level_residual(Phi, G, k, 0);
     int inside = res > BIREF_SUBBAND_PHASE_TOL && fabs(G[last / 2]) <= sp->d_max;
     for (int p = 1; inside && p < last; p++) {
         if (p != last / 2) lag_at(ld, n, p, Phi, G);
         inside = fabs(G[p]) <= sp->d_max;
     }
     if (inside)
-        while (res > BIREF_SUBBAND_PHASE_TOL && level < BIREF_SUBBAND_LEVELS) res = level_residual(Phi, G, k, ++level);
+        while (res > BIREF_SUBBAND_PHASE_TOL && level < BIREF_SUBBAND_LEVELS)
+            res = biref_subband_level_residual(Phi, G, k, ++level);
     /* m0 the whole band's integral, m1 its first moment in k, which the nodes' weights need. */
     double complex m0[3], m1[3], node[BIREF_BAND_NODES][3];
     const int far = level == 0 && !(fabs(G[last / 2]) <= sp->d_max);
@@ -219,7 +220,7 @@ void biref_lag_integrals(const biref_spectral *sp, biref_leg_dispersion *ld, dou
         /* The band's own table, which also covers the lags beyond the sub-band tables. */
         double complex rot;
         double g;
-        tangent(Phi, G, k, 0, 0, &rot, &g);
+        biref_subband_tangent(Phi, G, k, 0, 0, &rot, &g);
         double c0[3], s0[3];
         biref_spectral_phase_integrals(sp, g, c0, s0);
         const double cp = creal(rot), sn = cimag(rot);
@@ -230,7 +231,7 @@ void biref_lag_integrals(const biref_spectral *sp, biref_leg_dispersion *ld, dou
             for (int j = 0; j < 3; j++) m1[j] = rot * (g < 0.0 ? conj(tk[j]) : tk[j]);
         }
     } else
-        subband_sum(ld->sb, Phi, G, k, level, m0, m1);
+        biref_subband_sum(ld->sb, Phi, G, k, level, m0, m1);
     biref_lag_node_integrals(biref_subband_nodes(ld->sb), m0, m1, far, node);
     remember(ld->cache, n, (const double complex(*)[3])node);
     const double complex *out = ld->node >= 0 ? node[ld->node] : m0;

@@ -20,7 +20,7 @@
 
 typedef struct {
     double phi;
-    double curv;         /* dispersive: d²(k phi)/dk² of the path so far (nm²), else 0 */
+    int id;              /* dispersive: the id of the path's leg counts (stack_legs.c), else 0 */
     double complex a[2]; /* amplitude per input s/p */
     int key;             /* layer * 4 + BIREF_MODE_* (down o/e, up o/e) */
 } packet;
@@ -47,7 +47,7 @@ static int packets_push(packets *v, packet x)
     return 0;
 }
 
-static int groups_push(groups *v, double phi, double curv, const double complex M[2][2])
+static int groups_push(groups *v, double phi, int id, const double complex M[2][2])
 {
     if (v->n == v->cap) {
         int cap = v->cap ? 2 * v->cap : 64;
@@ -57,7 +57,7 @@ static int groups_push(groups *v, double phi, double curv, const double complex 
     }
     biref_stack_group *g = &v->g[v->n++];
     g->phi = phi;
-    g->curv = curv;
+    g->id = id;
     memcpy(g->M, M, sizeof g->M);
     return 0;
 }
@@ -83,7 +83,7 @@ static void merge_packets(packets *v)
     int w = 0;
     for (int r = 1; r < v->n; r++) {
         packet *last = &v->p[w];
-        if (v->p[r].key == last->key && v->p[r].phi - last->phi < MERGE_NM) {
+        if (v->p[r].key == last->key && v->p[r].phi - last->phi < MERGE_NM && v->p[r].id == last->id) {
             last->a[0] += v->p[r].a[0];
             last->a[1] += v->p[r].a[1];
         } else {
@@ -99,7 +99,7 @@ static void merge_groups(groups *v)
     qsort(v->g, (size_t)v->n, sizeof *v->g, by_phi);
     int w = 0;
     for (int r = 1; r < v->n; r++) {
-        if (v->g[r].phi - v->g[w].phi < MERGE_NM) {
+        if (v->g[r].phi - v->g[w].phi < MERGE_NM && v->g[r].id == v->g[w].id) {
             for (int i = 0; i < 2; i++)
                 for (int o = 0; o < 2; o++) v->g[w].M[i][o] += v->g[r].M[i][o];
         } else {
@@ -119,7 +119,8 @@ static double packet_amplitude(const biref_stack_state *st, const packet *p)
 
 typedef struct {
     const biref_stack_state *st;
-    const double (*curv)[4]; /* per layer and mode, or NULL */
+    const double (*grp)[4];  /* dispersive: each leg's group path [layer][BIREF_MODE_*], else NULL */
+    biref_stack_legs *legs;  /* dispersive: the legs' classes and the paths' counts, else NULL */
     packets *next;
     groups *exits; /* [0] bottom, [1] top */
     double drop, dropped;
@@ -130,10 +131,10 @@ static int scatter(step_ctx *c, const packet *p, const biref_complex f[2][2], in
 {
     if (exit >= 0) {
         const double complex M[2][2] = {{p->a[0] * f[m][0], p->a[0] * f[m][1]}, {p->a[1] * f[m][0], p->a[1] * f[m][1]}};
-        return groups_push(&c->exits[exit], p->phi, p->curv, M);
+        return groups_push(&c->exits[exit], p->phi, p->id, M);
     }
     for (int x = 0; x < 2; x++) {
-        packet q = {p->phi, p->curv, {p->a[0] * f[m][x], p->a[1] * f[m][x]},
+        packet q = {p->phi, p->id, {p->a[0] * f[m][x], p->a[1] * f[m][x]},
                     layer * 4 + (up ? BIREF_MODE_O_UP : 0) + x};
         if (q.a[0] == 0.0 && q.a[1] == 0.0) continue; /* no o/e coupling (isotropic neighbours) */
         double amp = packet_amplitude(c->st, &q);
@@ -154,8 +155,8 @@ static int step(step_ctx *c, const packets *cur)
     for (int k = 0; k < cur->n; k++) {
         packet p = cur->p[k];
         const int layer = p.key / 4, mode = p.key % 4, up = mode >= BIREF_MODE_O_UP, m = mode & 1;
-        p.phi += creal(up ? st->opl_up[layer][m] : st->opl_down[layer][m]);
-        if (c->curv) p.curv += c->curv[layer][mode];
+        p.phi += c->grp ? c->grp[layer][mode] : creal(up ? st->opl_up[layer][m] : st->opl_down[layer][m]);
+        if (c->legs && (p.id = biref_stack_legs_child(c->legs, p.id, layer, mode)) < 0) return -1;
         const biref_interface *f = &st->iface[up ? layer : layer + 1];
         int r;
         if (!up) {
@@ -178,19 +179,19 @@ static double live_amplitude(const biref_stack_state *st, const packets *v)
 }
 
 /* Follows the paths; returns 0, or -1 when out of memory. */
-static int follow(const biref_stack_state *st, const double (*curv)[4], double tolerance, int max_groups,
-                  groups exits[2], biref_stack_groups *out)
+static int follow(const biref_stack_state *st, const double (*grp)[4], biref_stack_legs *legs, double tolerance,
+                  int max_groups, groups exits[2], biref_stack_groups *out)
 {
     packets cur = {0}, next = {0};
-    step_ctx c = {st, curv, &next, exits, tolerance * DROP, 0.0};
+    step_ctx c = {st, grp, legs, &next, exits, tolerance * DROP, 0.0};
     int rc = 0;
     /* The direct reflection, and the two modes refracted into the first layer. */
-    if (groups_push(&exits[1], 0.0, 0.0, (const double complex(*)[2])st->iface[0].r_down)) {
+    if (groups_push(&exits[1], 0.0, 0, (const double complex(*)[2])st->iface[0].r_down)) {
         rc = -1;
         goto done;
     }
     for (int m = 0; m < 2; m++) {
-        packet q = {0.0, 0.0, {st->iface[0].t_down[0][m], st->iface[0].t_down[1][m]}, m};
+        packet q = {0.0, 0, {st->iface[0].t_down[0][m], st->iface[0].t_down[1][m]}, m};
         if ((q.a[0] != 0.0 || q.a[1] != 0.0) && packets_push(&cur, q)) {
             rc = -1;
             goto done;
@@ -227,8 +228,8 @@ done:
     return rc;
 }
 
-biref_status biref_stack_path_groups(const biref_stack_state *st, const double (*curv)[4], double tolerance,
-                                     int max_groups, biref_stack_groups *out)
+biref_status biref_stack_path_groups(const biref_stack_state *st, const double (*grp)[4], biref_stack_legs *legs,
+                                     double tolerance, int max_groups, biref_stack_groups *out)
 {
     memset(out, 0, sizeof *out);
     if (st->evanescent) {
@@ -236,7 +237,7 @@ biref_status biref_stack_path_groups(const biref_stack_state *st, const double (
         return BIREF_OK;
     }
     groups exits[2] = {{0}, {0}};
-    int rc = follow(st, curv, tolerance, max_groups, exits, out);
+    int rc = follow(st, grp, legs, tolerance, max_groups, exits, out);
     for (int f = 0; f < 2 && !rc && !out->reason; f++) {
         merge_groups(&exits[f]);
         if (exits[f].n > max_groups) out->reason = "too many path groups";

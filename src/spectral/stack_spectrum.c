@@ -42,26 +42,24 @@ static double group_amplitude(const biref_stack_group *g)
 typedef struct {
     int lo, hi;  /* bands lo .. hi - 1 */
     int pairs;   /* the four s/p pairs too (else only the light's intensity) */
-    double dk;   /* dispersive: the band's width in k (1/nm) */
-    double *err; /* dispersive: the error estimate accumulates here; NULL otherwise */
+    biref_stack_legs *legs;       /* dispersive: the pairs' phases by their leg counts; else NULL */
+    int node;                     /* dispersive: under this node's weight (< 0: the whole band) */
+    double *err;                  /* dispersive: the error estimate accumulates here; NULL otherwise */
 } band_range;
 
-/* The error a pair's linearised phases leave in band j: the quadratic phase ½ |Δcurv| dk² that
- * the line drops across the band, times the pair's amplitudes and the largest band integral its
- * group delay reaches across the band (as the slab's criterion, analytic_dispersive.c). */
-static double pair_curvature_error(const biref_spectral *sp, const biref_stack_group *g, const biref_stack_group *h,
-                                   double delta, const band_range *r)
+/* A pair's phase integrals: by its group paths' difference delta, or a dispersive stack's by
+ * the sub-band tangents of its exact phase difference (stack_legs.c), whose residual beyond the
+ * finest sub-bands, times the pair's amplitudes, adds to the error estimate. */
+static void pair_integrals(const biref_spectral *sp, const biref_stack_group *g, const biref_stack_group *h,
+                           double delta, const band_range *r, double C[3], double S[3])
 {
-    const double dc = fabs(h->curv - g->curv);
-    const double w = group_amplitude(g) * group_amplitude(h) * dc * r->dk * r->dk;
-    if (!(w > 1e-12)) return 0.0;
-    double smax = 0.0;
-    for (int e = -1; e <= 1; e++) {
-        double C[3], S[3];
-        biref_spectral_phase_integrals(sp, fmax(0.0, delta + e * dc * r->dk), C, S);
-        smax = fmax(smax, hypot(C[r->lo], S[r->lo]));
+    if (!r->legs) {
+        biref_spectral_phase_integrals(sp, delta, C, S);
+        return;
     }
-    return w * smax;
+    double residual;
+    biref_stack_legs_lag(r->legs, g->id, h->id, delta, r->node, C, S, &residual);
+    if (residual > 0.0) *r->err += group_amplitude(g) * group_amplitude(h) * residual;
 }
 
 /* The band integrals of |sum_g M_g e^{ik phi_g}|^2 for one face: X[in][out][band] and, with a light,
@@ -85,8 +83,7 @@ static void pair_sums(const biref_spectral *sp, const biref_stack_group *g, int 
             const double delta = g[h].phi - g[a].phi; /* >= 0: sorted */
             if (delta > sp->d_far) break;           /* S is 0 there, and for every later h */
             double C[3], S[3];
-            biref_spectral_phase_integrals(sp, delta, C, S);
-            if (r->err) *r->err += pair_curvature_error(sp, &g[a], &g[h], delta, r);
+            pair_integrals(sp, &g[a], &g[h], delta, r, C, S);
             /* 2 Re(c S(e^{-ik delta})) with S(e^{-ik delta}) = C - i S. */
             for (int i = 0; i < 2 * r->pairs; i++)
                 for (int o = 0; o < 2; o++) {
@@ -111,7 +108,8 @@ biref_status biref_stack_face_sums(const biref_spectral *sp, const biref_stack_g
         N = malloc((size_t)most * sizeof *N);
         if (!N) return BIREF_ERR_NOMEM;
     }
-    band_range r = {band < 0 ? 0 : band, band < 0 ? 3 : band + 1, what->pairs != 0, what->dk, band < 0 ? NULL : err};
+    band_range r = {band < 0 ? 0 : band, band < 0 ? 3 : band + 1, what->pairs != 0, what->legs, what->node,
+                    what->legs ? err : NULL};
     if (r.err) *r.err = 0.0;
     memset(out, 0, sizeof *out);
     memset(mixed, 0, sizeof(double[2][3]));
@@ -175,14 +173,14 @@ static biref_status expansion(const biref_spectral *sp, const biref_stack_state 
         return s;
     }
     biref_stack_groups g;
-    biref_status s = biref_stack_path_groups(st, NULL, o->tolerance, o->max_groups, &g);
+    biref_status s = biref_stack_path_groups(st, NULL, NULL, o->tolerance, o->max_groups, &g);
     if (s != BIREF_OK) return biref_fail_status(s, msg, msg_len, "out of memory");
     info->legs = g.legs;
     info->bound = g.bound;
     if (!g.reason) {
         info->groups[0] = g.n[0];
         info->groups[1] = g.n[1];
-        const biref_stack_sums all = {BIREF_SIDE_BOTH, 1, -1, 0.0};
+        const biref_stack_sums all = {BIREF_SIDE_BOTH, 1, -1, NULL, -1};
         s = biref_stack_face_sums(sp, &g, light, &all, out, mixed, NULL);
         biref_stack_groups_free(&g);
         return s == BIREF_OK ? s : biref_fail_status(s, msg, msg_len, "out of memory");
@@ -246,7 +244,7 @@ biref_status biref_stack_light_face(const biref_spectral *sp, const biref_stack_
     double mixed[2][3];
     const int face = which == BIREF_SIDE_REFLECTION;
     biref_stack_groups g = {0};
-    biref_status s = st->dispersive ? BIREF_OK : biref_stack_path_groups(st, NULL, o.tolerance, o.max_groups, &g);
+    biref_status s = st->dispersive ? BIREF_OK : biref_stack_path_groups(st, NULL, NULL, o.tolerance, o.max_groups, &g);
     if (s != BIREF_OK) return s;
     if (st->dispersive || g.reason) {
         /* The per-band expansion and the fallbacks: the whole integration, one face kept. */
@@ -254,7 +252,7 @@ biref_status biref_stack_light_face(const biref_spectral *sp, const biref_stack_
     } else {
         /* The pairs of the one face the hit sees, and the light's intensity alone (the same sums
          * in the same order as biref_stack_spectrum's). */
-        const biref_stack_sums one = {which, 0, -1, 0.0};
+        const biref_stack_sums one = {which, 0, -1, NULL, -1};
         s = biref_stack_face_sums(sp, &g, light, &one, &out, mixed, NULL);
         biref_stack_groups_free(&g);
     }

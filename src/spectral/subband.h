@@ -124,4 +124,21 @@ biref_status biref_leg_dispersion_init(const biref_spectral *sp, const biref_mat
 void biref_lag_integrals(const biref_spectral *sp, biref_leg_dispersion *ld, double opd_nm, const int n[4],
                          double c[3], double s[3], int *level_out, double *residual_out);
 
+/* Shared with the stacks' dispersive expansion (stack_legs.c), which samples its lags' phases
+ * itself. Re(opl) of the four legs of a layer of material m (biref_opl_footprint order) at λ and
+ * their slopes dopl/dλ (the codes of biref_material_indices). */
+biref_status biref_leg_paths_and_slopes(const biref_material *m, const double axis[3], double K, double d,
+                                        double lambda, double opl[4], double dopl[4]);
+/* The largest distance of a phase Phi (group path G, both at every sample point k) from its
+ * tangents at the midpoints of level `level`'s sub-bands, at their edges (radians). */
+double biref_subband_level_residual(const double *Phi, const double *G, const double *k, int level);
+/* The tangent of sub-band b of `level` (level 0: the whole range) at its midpoint: the offset
+ * e^{i(Φ(k_b) − k_b G_b)} and the group path G_b. */
+void biref_subband_tangent(const double *Phi, const double *G, const double *k, int level, int b,
+                           double complex *rot, double *g);
+/* The sums over the 2^level sub-bands of their tangents' integrals: m0 = S(e^{iΦ}, Λ_j) and
+ * m1 = S(k e^{iΦ}, Λ_j). */
+void biref_subband_sum(const biref_subbands *sb, const double *Phi, const double *G, const double *k, int level,
+                       double complex m0[3], double complex m1[3]);
+
 #endif

@@ -121,7 +121,12 @@ if worst > 1e-12:
     sys.exit(1)
 PY
 expect_ok "dispersive stack expansion" spectrum --stack "$ex/quartz_zero_order_halfwave.json" --json
-expect_grep "dispersive fallback reported" '"reason":[[:space:]]*"dispersion: the phases curve'
+expect_grep "dispersive stack expanded" '"fallback":[[:space:]]*false'
+printf '%s' '{"layers": [{"material": "rutile", "azimuth_deg": 45, "thickness_um": 300},
+  {"material": "rutile", "azimuth_deg": 135, "thickness_um": 301}]}' >"$tmpdir/rutile0.json"
+expect_ok "dispersive stack fallback" spectrum --stack "$tmpdir/rutile0.json" --theta-deg 28.6479 --json
+expect_grep "dispersive fallback reported" '"fallback":[[:space:]]*true'
+expect_grep "dispersive fallback says why" '"reason":[[:space:]]*"too many path groups'
 expect_ok "dispersive stack tmm" stack "$ex/quartz_multi_order_halfwave.json" --method tmm --lambda-nm 450
 bad "material with eta_o" '{"layers": [{"material": "quartz", "eta_o": 1.5, "axis": [0,0,1], "thickness_um": 1}]}'
 bad "unknown material" '{"layers": [{"material": "unobtainium", "axis": [0,0,1], "thickness_um": 1}]}'

@@ -42,13 +42,17 @@ for scene in examples/*.json "$tmpdir/thin.json" "$tmpdir/dense_surround.json"; 
 done
 
 # Dispersive materials (docs/GPU.md "Dispersive materials"): the example plates (the lags on
-# sub-band tangents), a 2 um calcite plate (the coherent regime with n(lambda)) and, not under
+# sub-band tangents; the quartz one also between world-fixed polarizers), a 2 um calcite plate (the coherent regime with n(lambda)) and, not under
 # BIREF_TEST_QUICK, a 4 mm one (tangents that break: the exact integral). The exact integrals
 # interpolate the Fresnel coefficients between band states on the GPU: measured mean dE00 <= 0.011,
 # p99 <= 0.55; the plates agree to mean <= 0.001, p99 0.
 sed -e 's/"thickness_um": 40/"thickness_um": 2/' examples/materials/calcite_plate.json >"$tmpdir/calcite_thin.json"
 sed -e 's/"thickness_um": 40/"thickness_um": 4000/' examples/materials/calcite_plate.json >"$tmpdir/calcite_thick.json"
-material_scenes="examples/materials/*.json $tmpdir/calcite_thin.json"
+# World-fixed polarizer and analyzer (the general light's terms per node run).
+sed -e 's/"type": "sp",/"type": "linear",/' -e 's/"s": 0.1,/"direction": [1, 0, 0]/' -e '/"p": 0.9/d' \
+    -e 's/"type": "s"/"type": "linear", "direction": [0, 0.6, 0.8]/' examples/materials/quartz_plate.json \
+    >"$tmpdir/quartz_world_fixed.json"
+material_scenes="examples/materials/*.json $tmpdir/quartz_world_fixed.json $tmpdir/calcite_thin.json"
 plate_size=(--width 320 --height 180)
 [ -n "${BIREF_TEST_QUICK:-}" ] && plate_size=(--width 160 --height 90) # the sanitizers' CPU renders
 [ -n "${BIREF_TEST_QUICK:-}" ] || material_scenes="$material_scenes $tmpdir/calcite_thick.json"

@@ -20,15 +20,15 @@ static int open_gl(const char *cmd, gl_context **g)
     return 0;
 }
 
-int cli_gl_render(const char *cmd, const biref_scene *scene, float *xyz, biref_render_stats *stats, double *gpu_ms,
-                  char *device, size_t device_len)
+int cli_gl_render(const char *cmd, const biref_scene *scene, int pairs, float *xyz, biref_render_stats *stats,
+                  double *gpu_ms, char *device, size_t device_len)
 {
     gl_context *g = NULL;
     int rc = open_gl(cmd, &g);
     if (rc) return rc;
     snprintf(device, device_len, "%s", gl_context_description(g));
     char msg[400];
-    if (gl_context_render(g, scene, xyz, gpu_ms, stats, msg, sizeof msg) != BIREF_OK) {
+    if (gl_context_render(g, scene, pairs, xyz, gpu_ms, stats, msg, sizeof msg) != BIREF_OK) {
         cli_error(cmd, "--backend gl: %s", msg);
         rc = CLI_EXIT_FAIL;
     }
@@ -58,7 +58,7 @@ int cli_gl_bench(const char *cmd, const biref_scene *scene, int frames, double *
     }
     for (int i = 0; i <= frames && !rc; i++) {
         double t0 = biref_wall_seconds();
-        if (gl_context_render(g, scene, xyz, &gpu[i], NULL, msg, sizeof msg) != BIREF_OK) {
+        if (gl_context_render(g, scene, 0, xyz, &gpu[i], NULL, msg, sizeof msg) != BIREF_OK) {
             cli_error(cmd, "--backend gl: %s", msg);
             rc = CLI_EXIT_FAIL;
         }

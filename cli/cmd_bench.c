@@ -45,6 +45,8 @@ static int parse_methods(const char *text, bench_method *m, int *n)
         biref_render_options_default(&b->opt);
         if (!strcmp(tok, "analytic")) {
             b->opt.method = BIREF_METHOD_ANALYTIC;
+        } else if (!strcmp(tok, "analytic-pairs")) {
+            b->opt.method = BIREF_METHOD_ANALYTIC_PAIRS;
         } else if (!strcmp(tok, "ground-truth")) {
             b->opt.method = BIREF_METHOD_GROUND_TRUTH;
         } else if (!strcmp(tok, "expansion")) {
@@ -55,7 +57,9 @@ static int parse_methods(const char *text, bench_method *m, int *n)
             b->opt.method = BIREF_METHOD_NUMERIC;
             b->opt.samples = (int)s;
         } else {
-            return cli_error(CMD, "--methods: unknown method '%s' (expected analytic, expansion, numeric-N or ground-truth)",
+            return cli_error(CMD,
+                             "--methods: unknown method '%s' (expected analytic, analytic-pairs, expansion, numeric-N or "
+                             "ground-truth)",
                              tok),
                    -1;
         }
@@ -126,7 +130,7 @@ static const cli_opt OPTS[] = {
     CLI_INT("width", "W", F(width), 1, BIREF_SCENE_MAX_SIDE, "frame width (default 1920)"),
     CLI_INT("height", "H", F(height), 1, BIREF_SCENE_MAX_SIDE, "frame height (default 1080)"),
     CLI_STRING("methods", 0, "LIST", F(methods),
-               "comma-separated: analytic, expansion, ground-truth, numeric-N\n"
+               "comma-separated: analytic, analytic-pairs, expansion, ground-truth, numeric-N\n"
                "(default " DEFAULT_METHODS ")"),
     CLI_CUSTOM("max-seconds", "S", OPT_MAX_SECONDS, "time budget per method before extrapolating (default 10)"),
     CLI_INT("threads", "T", F(threads), 1, 1024, "OpenMP threads (default: all cores)"),
@@ -259,19 +263,24 @@ static void print_table(const bench_args *a, int W, int H, int n_threads, const 
     printf("Scene %s, %dx%d, %d thread%s\n\n", a->scene_path, W, H, n_threads, n_threads == 1 ? "" : "s");
     printf("%-34s %14s %12s %14s\n", "Spectral integration method", "Frame time", "ns/pixel", "CPU time");
     /* Grouped as in table 1: analytic first, then numeric by sample count, then ground truth;
-     * the path-group expansion (beyond the paper) last. */
-    for (int pass = 0; pass < 4; pass++) {
-        static const biref_method order[4] = {BIREF_METHOD_ANALYTIC, BIREF_METHOD_NUMERIC, BIREF_METHOD_GROUND_TRUTH,
-                                              BIREF_METHOD_EXPANSION};
+     * analytic-pairs and the path-group expansion (beyond the paper) last. */
+    int beyond = 0;
+    for (int pass = 0; pass < 5; pass++) {
+        static const biref_method order[5] = {BIREF_METHOD_ANALYTIC, BIREF_METHOD_NUMERIC, BIREF_METHOD_GROUND_TRUTH,
+                                              BIREF_METHOD_ANALYTIC_PAIRS, BIREF_METHOD_EXPANSION};
         const biref_method want = order[pass];
         int header = 0;
         for (int i = 0; i < n_methods; i++) {
             if (m[i].opt.method != want) continue;
-            if (!header && pass) printf("%s\n", pass == 1 ? "Numeric integration" : pass == 2 ? "Ground truth" : "Beyond the paper");
+            if (!header && pass && !(pass >= 3 && beyond))
+                printf("%s\n", pass == 1 ? "Numeric integration" : pass == 2 ? "Ground truth" : "Beyond the paper");
             header = 1;
+            beyond |= pass >= 3;
             char label[48], tm[32], cpu[32];
             if (want == BIREF_METHOD_ANALYTIC)
                 snprintf(label, sizeof label, "Analytic approximation");
+            else if (want == BIREF_METHOD_ANALYTIC_PAIRS)
+                snprintf(label, sizeof label, "  analytic + sibling pairs");
             else if (want == BIREF_METHOD_EXPANSION)
                 snprintf(label, sizeof label, "  path-group expansion");
             else
@@ -305,7 +314,8 @@ int cmd_bench(int argc, char **argv)
     int n_methods = 0;
     if (parse_methods(a.methods, m, &n_methods)) return CLI_EXIT_USAGE;
     for (int i = 0; i < n_methods; i++)
-        if (a.prefilter && (m[i].opt.method == BIREF_METHOD_ANALYTIC || m[i].opt.method == BIREF_METHOD_EXPANSION))
+        if (a.prefilter && (m[i].opt.method == BIREF_METHOD_ANALYTIC || m[i].opt.method == BIREF_METHOD_ANALYTIC_PAIRS ||
+                            m[i].opt.method == BIREF_METHOD_EXPANSION))
             m[i].opt.antialias = BIREF_ANTIALIAS_PREFILTER;
     biref_scene scene;
     char default_scene[4096];

@@ -41,7 +41,9 @@ static int handle(void *args, int code, const char *arg)
     switch (code) {
     case OPT_METHOD:
         if (biref_method_from_name(arg, &a->opt.method) != BIREF_OK)
-            return cli_error(CMD, "--method: expected analytic, numeric, ground-truth or expansion, got '%s'", arg), -1;
+            return cli_error(CMD, "--method: expected analytic, analytic-pairs, numeric, ground-truth or expansion, got '%s'",
+                             arg),
+                   -1;
         return 0;
     case OPT_BACKEND: return cli_parse_backend(CMD, arg, &a->gl);
     case OPT_ORDER: return cli_parse_expansion_order(CMD, arg, &a->opt.expansion);
@@ -63,17 +65,19 @@ static const cli_opt OPTS[] = {
                "temporary file and renamed into place, or through a symlink,\n"
                "FIFO or device"),
     CLI_CUSTOM("method", "M", OPT_METHOD,
-               "analytic (default; the paper's eq. 26), numeric, ground-truth\n"
+               "analytic (default; the paper's eq. 26), analytic-pairs (eq. 26 plus\n"
+               "transmission's sibling and entry pairs, beyond the paper; docs/PHYSICS.md),\n"
+               "numeric, ground-truth\n"
                "(numeric with " STR(BIREF_GROUND_TRUTH_SAMPLES) " samples) or expansion (exact integral of the\n"
                "path-group expansion; any polarizer, docs/PHYSICS.md §5); stack slabs:\n"
-               "analytic and expansion by the stack expansion (docs/STACKS.md §5)"),
+               "analytic, analytic-pairs and expansion by the stack expansion (docs/STACKS.md §5)"),
     CLI_CUSTOM("backend", "B", OPT_BACKEND,
-               "cpu (default) or gl: the analytic method as a GLSL shader through\n"
+               "cpu (default) or gl: the analytic method (or analytic-pairs) as a GLSL shader through\n"
                "EGL and OpenGL >= 4.3 (any polarizer; docs/GPU.md)"),
     CLI_INT("spectral-samples", "N", F(samples), 1, 65536, "spectral samples for --method numeric (default 64)"),
     CLI_EXPANSION_OPTIONS(OPT_ORDER, OPT_TOLERANCE),
     CLI_CUSTOM("antialias", "A", OPT_ANTIALIAS,
-               "prefilter (default for analytic and expansion): each pixel averages\n"
+               "prefilter (default for analytic, analytic-pairs and expansion): each pixel averages\n"
                "the phase integrals over its footprint in path difference (no moire\n"
                "rings); none: one point look-up per sample (docs/ANTIALIASING.md)"),
     CLI_INT("supersample", "K", F(supersample), 1, BIREF_MAX_SUPERSAMPLE,
@@ -135,14 +139,16 @@ static int parse(int argc, char **argv, render_args *a)
         return cli_error(CMD, "--order/--tolerance only apply to --method expansion"), -1;
     opt->threads = (int)a->threads;
     if (a->threads > 0) omp_set_num_threads((int)a->threads); /* also the sRGB encoding's loop */
-    if (a->gl && ((cli_opts_given(&CLI_RENDER, &p, "method") && opt->method != BIREF_METHOD_ANALYTIC) || a->threads))
-        return cli_error(CMD, "--backend gl runs the analytic method only (no --method other than analytic, no --threads)"),
+    const int analytic = opt->method == BIREF_METHOD_ANALYTIC || opt->method == BIREF_METHOD_ANALYTIC_PAIRS;
+    if (a->gl && ((cli_opts_given(&CLI_RENDER, &p, "method") && !analytic) || a->threads))
+        return cli_error(CMD, "--backend gl runs the analytic methods only (no --method other than analytic or "
+                              "analytic-pairs, no --threads)"),
                -1;
     opt->supersample = (int)a->supersample;
     /* The prefilter needs the phase table of the analytic method and the expansion (on the CPU). */
-    int table_method = !a->gl && (opt->method == BIREF_METHOD_ANALYTIC || opt->method == BIREF_METHOD_EXPANSION);
+    int table_method = !a->gl && (analytic || opt->method == BIREF_METHOD_EXPANSION);
     if (a->antialias == BIREF_ANTIALIAS_PREFILTER && !table_method)
-        return cli_error(CMD, "--antialias prefilter needs --method analytic or expansion on the CPU"), -1;
+        return cli_error(CMD, "--antialias prefilter needs --method analytic, analytic-pairs or expansion on the CPU"), -1;
     if (a->gl && a->supersample > 1) return cli_error(CMD, "--supersample needs the CPU back-end"), -1;
     opt->antialias = a->antialias >= 0 ? (biref_antialias)a->antialias
                                        : table_method ? BIREF_ANTIALIAS_PREFILTER : BIREF_ANTIALIAS_NONE;
@@ -170,7 +176,8 @@ static int render_xyz(const render_args *a, const biref_scene *scene, float *xyz
     biref_progress_bar bar;
     biref_progress_bar_init(&bar, stderr, !a->gl, "render");
     double t0 = biref_wall_seconds();
-    if (a->gl && (rc = cli_gl_render(CMD, scene, xyz, &res->stats, &res->gpu_ms, res->device, sizeof res->device)))
+    const int pairs = a->opt.method == BIREF_METHOD_ANALYTIC_PAIRS;
+    if (a->gl && (rc = cli_gl_render(CMD, scene, pairs, xyz, &res->stats, &res->gpu_ms, res->device, sizeof res->device)))
         return rc;
     biref_status rs = a->gl              ? BIREF_OK
                       : cli_mpi_active() ? cli_mpi_render(r, xyz, biref_progress_bar_update, &bar, &res->stats)
@@ -241,7 +248,8 @@ static int print_report(const render_args *a, const render_result *res)
         /* A stack has no analytic method: the analytic method renders stacks by their expansion. */
         cJSON_AddNumberToObject(root, "stack_slabs", a->stack_slabs);
         if (a->stack_slabs)
-            cJSON_AddStringToObject(root, "stack_method", opt->method == BIREF_METHOD_ANALYTIC
+            cJSON_AddStringToObject(root, "stack_method", opt->method == BIREF_METHOD_ANALYTIC ||
+                                                                      opt->method == BIREF_METHOD_ANALYTIC_PAIRS
                                                               ? "expansion"
                                                               : biref_method_name(opt->method));
         else

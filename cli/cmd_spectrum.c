@@ -81,7 +81,9 @@ static int handle(void *args, int c, const char *arg)
     switch (c) {
     case OPT_METHOD:
         if (biref_method_from_name(arg, &a->method) != BIREF_OK)
-            return cli_error(CMD, "--method: expected analytic, numeric, ground-truth or expansion, got '%s'", arg),
+            return cli_error(CMD,
+                             "--method: expected analytic, analytic-pairs, numeric, ground-truth or expansion, got '%s'",
+                             arg),
                    -1;
         return 0;
     case OPT_CMF:
@@ -133,7 +135,9 @@ static int handle(void *args, int c, const char *arg)
 static const cli_opt OPTS[] = {
     CLI_SLAB_OPTIONS,
     CLI_CUSTOM("method", "M", OPT_METHOD,
-               "analytic (default; paper eq. 26), numeric (N samples of eq. 17),\n"
+               "analytic (default; paper eq. 26), analytic-pairs (eq. 26 plus\n"
+               "transmission's sibling and entry pairs, beyond the paper),\n"
+               "numeric (N samples of eq. 17),\n"
                "ground-truth (numeric, 16384 samples) or expansion (exact integral\n"
                "of the path-group expansion, docs/PHYSICS.md §5)"),
     CLI_INT("spectral-samples", "N", F(samples), 1, MAX_SAMPLES,
@@ -225,9 +229,10 @@ static int check_stack_args(spectrum_args *a, const cli_parsed *p)
                              slab_opts[k]),
                    -1;
     if (!cli_opts_given(&CLI_SPECTRUM, p, "method")) a->method = BIREF_METHOD_EXPANSION;
-    if (a->method == BIREF_METHOD_ANALYTIC)
-        return cli_error(CMD, "--method analytic: not valid with --stack (the paper's eq. 26 is for one slab; use "
-                              "expansion, numeric or ground-truth)"),
+    if (a->method == BIREF_METHOD_ANALYTIC || a->method == BIREF_METHOD_ANALYTIC_PAIRS)
+        return cli_error(CMD, "--method %s: not valid with --stack (the paper's eq. 26 is for one slab; use "
+                              "expansion, numeric or ground-truth)",
+                         biref_method_name(a->method)),
                -1;
     if (a->have_order) return cli_error(CMD, "--order: not valid with --stack (the stack's expansion takes --tolerance)"), -1;
     return 0;

@@ -317,7 +317,7 @@ static void set_uniform(void *user, const char *name, int comps, int count, cons
     }
 }
 
-biref_status gl_context_render(gl_context *g, const biref_scene *scene, float *xyz, double *gpu_ms,
+biref_status gl_context_render(gl_context *g, const biref_scene *scene, int pairs, float *xyz, double *gpu_ms,
                              biref_render_stats *stats, char *msg, size_t msg_len)
 {
     const int W = scene->camera.width, H = scene->camera.height;
@@ -343,6 +343,7 @@ biref_status gl_context_render(gl_context *g, const biref_scene *scene, float *x
     if ((s = upload_materials(g, scene, msg, msg_len)) != BIREF_OK) goto done;
     glUseProgram(g->prog);
     biref_gl_scene_uniforms(scene, g->sp, set_uniform, &g->prog);
+    glUniform1f(glGetUniformLocation(g->prog, "u_pairs"), pairs ? 1.0f : 0.0f);
     const struct {
         GLuint tex;
         const char *name;

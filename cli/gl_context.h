@@ -20,9 +20,10 @@ void gl_context_destroy(gl_context *g);
 const char *gl_context_description(const gl_context *g);
 
 /* Renders the scene at its camera's size into xyz (width * height * 3 floats, top row first,
- * exposure applied: the layout of biref_render_image). gpu_ms (may be NULL): GPU time of the
+ * exposure applied: the layout of biref_render_image), by the analytic method (pairs 0) or
+ * analytic-pairs (1: the shader's u_pairs). gpu_ms (may be NULL): GPU time of the
  * frame from timer queries; stats (may be NULL): pixel counts. */
-biref_status gl_context_render(gl_context *g, const biref_scene *scene, float *xyz, double *gpu_ms,
+biref_status gl_context_render(gl_context *g, const biref_scene *scene, int pairs, float *xyz, double *gpu_ms,
                                biref_render_stats *stats, char *msg, size_t msg_len);
 
 #endif

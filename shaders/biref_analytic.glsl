@@ -55,6 +55,9 @@ uniform vec4 u_lut_band;     /* nu_c (1/nm), lambda_min, lambda_max, unused */
 uniform vec3 u_lut_edge_lo;  /* Λ_j(λmin) λmin^2: endpoint terms of the asymptotics */
 uniform vec3 u_lut_edge_hi;
 uniform vec3 u_k_centroid;   /* band centroids of 2 pi / λ */
+/* The method: 0 (default) the analytic method, the paper's eq. 26; 1 analytic-pairs, eq. 26 plus
+ * transmission's sibling and entry pairs (docs/PHYSICS.md, "Siblings"). */
+uniform float u_pairs;
 
 /* e^{2 pi i x} with x reduced to the nearest cycle first (|angle| <= pi). */
 vec2 cycles_exp(float x)
@@ -458,7 +461,8 @@ TransPhases transmission_phases(SlabState st)
             vec2 trip = st.ou[y] + st.od[x2];
             ph.trip[2 * y + x2] = phase_eval(trip.x, trip.y);
         }
-    for (int m = 0; m < 3; m++) ph.e2[m] = phase_eval(2.0 * st.dd + float(m - 1) * st.du, 0.0);
+    if (u_pairs > 0.5)
+        for (int m = 0; m < 3; m++) ph.e2[m] = phase_eval(2.0 * st.dd + float(m - 1) * st.du, 0.0);
     return ph;
 }
 
@@ -486,6 +490,7 @@ void transmission_terms(SlabState st, TransPhases ph, PhaseInt pair[6], vec3 C, 
             for (int x = 0; x < 2; x++)
                 add_re(H, W[x], cmul(cmul(st.bot.rd[2 * x + y], st.top.ru[2 * y + x2]), Xout[2 * x + x2]),
                        ph.trip[2 * y + x2]);
+    if (u_pairs < 0.5) return; /* the analytic method: eq. 26 alone */
     /* Siblings (analytic.c): from the bottom in mode x, two last round trips a < b
      * (a = (down x2, up y)), with the lags of reflection's order-1 pairs (k as there). */
     int k = 0;
@@ -1164,7 +1169,8 @@ TransPhases transmission_lags(SlabState st, bool flip)
             vec2 trip = st.ou[y] + st.od[x2];
             ph.trip[2 * y + x2] = lag_phase(flip ? 4 + 2 * y + x2 : 4 + 2 * x2 + y, trip.y);
         }
-    for (int m = 0; m < 3; m++) ph.e2[m] = lag_phase(flip ? 12 + m : 9 + m, 0.0); /* attenuation per pair */
+    if (u_pairs > 0.5)
+        for (int m = 0; m < 3; m++) ph.e2[m] = lag_phase(flip ? 12 + m : 9 + m, 0.0); /* attenuation per pair */
     return ph;
 }
 
@@ -1283,7 +1289,8 @@ bool shade_hit(vec3 view, vec3 normal, vec3 tangent, vec3 axis, vec3 eta, bool d
             if (!dispersive) break;
             sample_legs(points_row, f.A, eta_i * f.sin_t, d);
             float worst = 0.0, residual;
-            for (int i = 0; i < 15; i++) {
+            int lags = u_pairs > 0.5 ? 15 : 9; /* the entry pairs' lags: analytic-pairs only */
+            for (int i = 0; i < lags; i++) {
                 if (i == 8) {
                     for (int k = 0; k < 2; k++) {
                         g_lag_c[16 + k] = g_lag_c[6 + k];

@@ -32,9 +32,9 @@ static biref_status check_render_options(const biref_render_options *opt, char *
     if (opt->antialias != BIREF_ANTIALIAS_NONE && opt->antialias != BIREF_ANTIALIAS_PREFILTER)
         return biref_fail(msg, msg_len, "unknown anti-aliasing mode");
     if (opt->antialias == BIREF_ANTIALIAS_PREFILTER && opt->method != BIREF_METHOD_ANALYTIC &&
-        opt->method != BIREF_METHOD_EXPANSION)
+        opt->method != BIREF_METHOD_ANALYTIC_PAIRS && opt->method != BIREF_METHOD_EXPANSION)
         return biref_fail(msg, msg_len,
-                          "the prefilter anti-aliasing needs the analytic or expansion method (numeric methods "
+                          "the prefilter anti-aliasing needs an analytic or the expansion method (numeric methods "
                           "have no phase table)");
     if (opt->supersample < 1 || opt->supersample > BIREF_MAX_SUPERSAMPLE)
         return biref_fail(msg, msg_len, "supersample must be between 1 and %d", BIREF_MAX_SUPERSAMPLE);

@@ -133,9 +133,9 @@ void biref_stack_spectrum_opts_default(biref_stack_spectrum_opts *o)
 
 static biref_status check_opts(const biref_stack_spectrum_opts *o, char *msg, size_t msg_len)
 {
-    if (o->method == BIREF_METHOD_ANALYTIC)
-        return biref_fail(msg, msg_len, "a stack has no analytic method (the paper's eq. 26 is for one slab): use "
-                                        "expansion, numeric or ground-truth");
+    if (o->method == BIREF_METHOD_ANALYTIC || o->method == BIREF_METHOD_ANALYTIC_PAIRS)
+        return biref_fail(msg, msg_len, "a stack has no %s method (the paper's eq. 26 is for one slab): use "
+                                        "expansion, numeric or ground-truth", biref_method_name(o->method));
     if (o->method != BIREF_METHOD_EXPANSION && o->method != BIREF_METHOD_NUMERIC &&
         o->method != BIREF_METHOD_GROUND_TRUTH)
         return biref_fail(msg, msg_len, "unknown method %d", (int)o->method);

@@ -404,7 +404,7 @@ def stack(stack, theta_deg=0.0, lambda_nm=550.0, method="exact"):
 # Spectra
 # --------------------------------------------------------------------------------------------
 
-_METHODS = ("analytic", "numeric", "ground-truth", "expansion")
+_METHODS = ("analytic", "analytic-pairs", "numeric", "ground-truth", "expansion")
 
 
 def _method(name):
@@ -563,10 +563,12 @@ def spectrum(eta_o=None, eta_e=None, axis=None, thickness_mm=None, thickness_um=
         plan = _ffi.gc(pp[0], _lib.biref_numeric_plan_destroy)
 
     integ = None
-    if general and m == _lib.BIREF_METHOD_ANALYTIC:
+    analytic = m in (_lib.BIREF_METHOD_ANALYTIC, _lib.BIREF_METHOD_ANALYTIC_PAIRS)
+    if general and analytic:
         # Any other light: the analytic method's general terms, through the integrator.
         io = _ffi.new("biref_integrator_options *")
         _lib.biref_integrator_options_default(io)
+        io.method = m
         ip = _ffi.new("biref_integrator **")
         _call("integrator", _lib.biref_integrator_create, sp, io, ip)
         integ = _ffi.gc(ip[0], _lib.biref_integrator_destroy)
@@ -604,6 +606,8 @@ def spectrum(eta_o=None, eta_e=None, axis=None, thickness_mm=None, thickness_um=
             _lib.biref_spectrum_numeric(plan, st, spec)
         elif m == _lib.BIREF_METHOD_EXPANSION:
             _check(_lib.biref_spectrum_expansion(sp, st, eopts, spec), "expansion")
+        elif m == _lib.BIREF_METHOD_ANALYTIC_PAIRS:
+            _lib.biref_spectrum_analytic_pairs(sp, st, spec)
         else:
             _lib.biref_spectrum_analytic(sp, st, spec)
         T_all[idx] = _np.array(_ffi.unpack(_ffi.cast("double *", spec.T), 12)).reshape(2, 2, 3)

@@ -117,6 +117,8 @@ def test_stack_spectrum_matches_cli():
     assert got["expansion"]["groups"] == ref["expansion"]["groups"]
     with pytest.raises(ValueError, match="no analytic method"):
         biref.stack_spectrum(path, method="analytic")
+    with pytest.raises(ValueError, match="no analytic-pairs method"):
+        biref.stack_spectrum(path, method="analytic-pairs")
 
 
 def test_slab_vectorised_equals_scalar_and_conserves_energy():
@@ -151,6 +153,8 @@ def test_slab_vectorised_equals_scalar_and_conserves_energy():
     dict(method="expansion", stokes=(1, 0.2, -0.3, 0.5), analyzer="linear:60"),
     dict(polarizer="linear:10", analyzer="circular:+1"),
     dict(method="expansion", order=2),
+    dict(method="analytic-pairs", polarization="s", analyzer="p"),
+    dict(method="analytic-pairs", polarizer="linear:10", analyzer="circular:+1"),
 ])
 def test_spectrum_matches_cli(extra):
     args = ["spectrum", *SLAB_ARGS, "--thickness-um", "20", "--theta-deg", "30"]

@@ -446,7 +446,7 @@ void path_energies(vec3 w0[2], vec2 Rin[4], vec3 e_mid[2], vec2 Rout[4], vec3 e_
 /* Table look-ups of one direction, shared by every polarisation form. Transmission: the order-0
  * pair and the four round trips (bottom reflection into y, up, top reflection into x2). */
 struct TransPhases {
-    PhaseInt h0, trip[4];
+    PhaseInt h0, trip[4], e2[3]; /* e2[m + 1]: 2 dd + m du, the entry pairs' lags beyond pair's */
 };
 
 TransPhases transmission_phases(SlabState st)
@@ -458,11 +458,13 @@ TransPhases transmission_phases(SlabState st)
             vec2 trip = st.ou[y] + st.od[x2];
             ph.trip[2 * y + x2] = phase_eval(trip.x, trip.y);
         }
+    for (int m = 0; m < 3; m++) ph.e2[m] = phase_eval(2.0 * st.dd + float(m - 1) * st.du, 0.0);
     return ph;
 }
 
-/* Transmission, S(|e J P|^2) = E + 2H for light entering through top and leaving through bot. */
-void transmission_terms(SlabState st, TransPhases ph, vec3 C, vec4 P, out vec3 E, out vec3 H)
+/* Transmission, S(|e J P|^2) = E + 2H for light entering through top and leaving through bot;
+ * pair: reflection's order-1 pairs (ReflPhases), whose lags the siblings share. */
+void transmission_terms(SlabState st, TransPhases ph, PhaseInt pair[6], vec3 C, vec4 P, out vec3 E, out vec3 H)
 {
     vec2 Ein[4], TP[4], Xout[4];
     entry_matrix(C, st.top.td, Ein);
@@ -484,6 +486,45 @@ void transmission_terms(SlabState st, TransPhases ph, vec3 C, vec4 P, out vec3 E
             for (int x = 0; x < 2; x++)
                 add_re(H, W[x], cmul(cmul(st.bot.rd[2 * x + y], st.top.ru[2 * y + x2]), Xout[2 * x + x2]),
                        ph.trip[2 * y + x2]);
+    /* Siblings (analytic.c): from the bottom in mode x, two last round trips a < b
+     * (a = (down x2, up y)), with the lags of reflection's order-1 pairs (k as there). */
+    int k = 0;
+    for (int a = 0; a < 4; a++)
+        for (int b = a + 1; b < 4; b++) {
+            int xa = a / 2, ya = a - 2 * xa, xb = b / 2, yb = b - 2 * xb;
+            for (int x = 0; x < 2; x++) {
+                vec2 ca = cmul(st.bot.rd[2 * x + ya], st.top.ru[2 * ya + xa]);
+                vec2 cb = cmul(st.bot.rd[2 * x + yb], st.top.ru[2 * yb + xb]);
+                add_re(H, W[x], cmul(cmulc(ca, cb), Xout[2 * xa + xb]), pair[k]);
+            }
+            k++;
+        }
+    /* The order-1 paths whose entry legs differ, (o, a) and (e, b): lag kk dd + m du with
+     * kk = 1 + x_b - x_a, m = y_b - y_a (analytic.c's biref_entry_pairs). */
+    for (int a = 0; a < 4; a++)
+        for (int b = 0; b < 4; b++) {
+            int xa = a / 2, ya = a - 2 * xa, xb = b / 2, yb = b - 2 * xb;
+            int kk = 1 + xb - xa, m = yb - ya;
+            PhaseInt p = pair[0]; /* kk = 0: +-du, or 0 */
+            if (kk == 2) {
+                p = ph.e2[m + 1];
+            } else if (kk == 1) {
+                if (m == 0)
+                    p = ph.h0;
+                else if (m > 0)
+                    p = pair[2];
+                else
+                    p = pair[3];
+            } else {
+                p.s *= float(m);
+                if (m == 0) p.c = vec3(1.0);
+            }
+            float im = st.od[0].y + st.od[xa].y + st.ou[ya].y + st.od[1].y + st.od[xb].y + st.ou[yb].y;
+            p.att = im != 0.0 ? exp(-u_k_centroid * im) : vec3(1.0);
+            vec2 ca = cmul(st.bot.rd[ya], st.top.ru[2 * ya + xa]);
+            vec2 cb = cmul(st.bot.rd[2 + yb], st.top.ru[2 * yb + xb]);
+            add_re(H, vec3(1.0), cmul(cmul(Ein[1], cmulc(ca, cb)), Xout[2 * xa + xb]), p);
+        }
 }
 
 /* Reflection: the four order-1 paths a = (down x, up y) and their six pairwise differences. */
@@ -755,7 +796,7 @@ vec3 slab_colour_phases(SlabState st, int which, vec3 C, vec4 P, bool paper_mode
     vec3 E, H;
     if (!paper_model) {
         if (which == 0)
-            transmission_terms(st, tp, C, P, E, H);
+            transmission_terms(st, tp, rp.pair, C, P, E, H);
         else
             reflection_terms(st, rp, C, P, E, H);
         vec3 X = E + 2.0 * H;
@@ -773,7 +814,7 @@ vec3 slab_colour_phases(SlabState st, int which, vec3 C, vec4 P, bool paper_mode
         vec3 Ci = i == 0 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 0.0, 1.0);
         vec4 Po = o == 0 ? vec4(1.0, 0.0, 0.0, 0.0) : vec4(0.0, 0.0, 0.0, 1.0);
         if (d == 0)
-            transmission_terms(st, tp, Ci, Po, E, H);
+            transmission_terms(st, tp, rp.pair, Ci, Po, E, H);
         else
             reflection_terms(st, rp, Ci, Po, E, H);
         Es[n] = E;
@@ -1037,7 +1078,7 @@ void node_integrals(int i, vec3 c0, vec3 s0, vec3 c1, vec3 s1, bool beyond, out 
 }
 
 /* The lags' integrals under the nodes' weights: lag n, node i at index 2 n + i. */
-vec3 g_lag_c[18], g_lag_s[18];
+vec3 g_lag_c[30], g_lag_s[30];
 
 /* The lag weighted by w (biref_lag_integrals) into lag slot n; res: the largest phase error of
  * the tangents at the level used. */
@@ -1085,7 +1126,9 @@ void lag_integrals(vec3 w, int n, out float res)
 }
 
 /* The lags of both faces' states (transmission-frame legs): 0 e - o down, 1 e - o up, 2 their
- * sum, 3 their difference, 4 + 2 x + y the round trip (down x, up y), 8 = -(lag 3). */
+ * sum, 3 their difference, 4 + 2 x + y the round trip (down x, up y), 8 = -(lag 3); the siblings'
+ * entry pairs: 10 + m twice e - o down plus m times e - o up (the state's, m = -1, 0, 1), 13 + m the
+ * same with down and up exchanged (the flip's). */
 
 vec3 lag_weights(int i)
 {
@@ -1093,6 +1136,8 @@ vec3 lag_weights(int i)
     if (i == 1) return vec3(0.0, 0.0, 1.0);
     if (i == 2) return vec3(0.0, 1.0, 1.0);
     if (i == 3) return vec3(0.0, 1.0, -1.0);
+    if (i >= 12) return vec3(0.0, float(i - 13), 2.0);
+    if (i >= 9) return vec3(0.0, 2.0, float(i - 10));
     return vec3(2.0, float((i - 4) / 2), float((i - 4) % 2));
 }
 
@@ -1119,6 +1164,7 @@ TransPhases transmission_lags(SlabState st, bool flip)
             vec2 trip = st.ou[y] + st.od[x2];
             ph.trip[2 * y + x2] = lag_phase(flip ? 4 + 2 * y + x2 : 4 + 2 * x2 + y, trip.y);
         }
+    for (int m = 0; m < 3; m++) ph.e2[m] = lag_phase(flip ? 12 + m : 9 + m, 0.0); /* attenuation per pair */
     return ph;
 }
 
@@ -1237,7 +1283,7 @@ bool shade_hit(vec3 view, vec3 normal, vec3 tangent, vec3 axis, vec3 eta, bool d
             if (!dispersive) break;
             sample_legs(points_row, f.A, eta_i * f.sin_t, d);
             float worst = 0.0, residual;
-            for (int i = 0; i < 9; i++) {
+            for (int i = 0; i < 15; i++) {
                 if (i == 8) {
                     for (int k = 0; k < 2; k++) {
                         g_lag_c[16 + k] = g_lag_c[6 + k];

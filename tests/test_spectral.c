@@ -185,11 +185,11 @@ static void analytic_approximation_matches_ground_truth_on_thin_slabs(void)
     }
     printf("analytic vs ground truth, thin slabs: T crossed mean %.3f max %.3f; R mean %.3f max %.3f\n", sum / n,
            worst, sum_r / n, worst_r);
-    /* Measured (seed 2024, 150 slabs): T crossed mean 0.129, max 1.89 (the omitted
-     * non-descendant pairs, eq. 23); R mean 0.016, max 0.29. Before the energy balance the T
-     * figures were 0.24 and 2.39, so the bound now holds the balance's gain. */
-    CHECK(sum / n < 0.2 && worst < 2.5);
-    CHECK(sum_r / n < 0.1 && worst_r < 0.5);
+    /* Measured (seed 2024, 150 slabs): T crossed mean 0.004, max 0.043; R mean 0.011, max 0.12.
+     * Eq. 26 alone (no siblings) gave 0.129 and 1.89 (R 0.016, 0.29), and before the energy balance
+     * 0.24 and 2.39: the bound holds the siblings' gain. */
+    CHECK(sum / n < 0.02 && worst < 0.2);
+    CHECK(sum_r / n < 0.05 && worst_r < 0.3);
     biref_numeric_plan_destroy(gt);
 }
 

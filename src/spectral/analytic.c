@@ -5,7 +5,13 @@
  * form as a geometric series of the component-wise |.|^2 of the round-trip operator (eqs.
  * 20–21; the right-hand vector of eq. 21 is the exit coefficients, docs/PAPER-ERRATA.md). H keeps
  * only the pairs (path, path + one more round trip) ("descendants", eqs. 22–23 with m = 1)
- * plus the interference of the lowest-order paths among themselves (H0, eq. 24). Complex
+ * plus the interference of the lowest-order paths among themselves (H0, eq. 24). Transmission
+ * also keeps the siblings (ours, beyond the paper): the pairs of paths of one order that coincide
+ * up to their last round trip, weighted like the descendants by the energy W of all paths
+ * reaching the bottom, and the order-1 pairs whose entry legs differ. Their lags are the
+ * birefringent ones (multiples of e − o down and up), as short as H0's, so they interfere as
+ * strongly; without them eq. 26 misses up to ΔE00 7–12 of grazing light through strongly
+ * reflecting plates (docs/ACCURACY-DISPERSION.md). Complex
  * coefficients (total reflection) need S(sin(k D)) next to S(cos(k D)):
  * S(Re(c e^{ikD})) = Re(c) S(cos kD) - Im(c) S(sin kD).
  *
@@ -35,18 +41,15 @@ void biref_transmission_phases(const biref_spectral *sp, const biref_slab_state 
         }
 }
 
-void biref_reflection_phases(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
-                             biref_phase_int p1[4], biref_phase_int pair[4][4])
+void biref_order1_pairs(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                        biref_phase_int pair[4][4])
 {
     const double complex *od = st->opl_down, *ou = st->opl_up;
-    /* Order-1 paths a = (down x, up y) = (a >> 1, a & 1): optical paths and pairwise
-     * differences; the same four sums serve as the extra round trip of the descendants. */
     double complex opl1[4];
     int legs1[4][4] = {{0}}; /* leg counts of the order-1 paths */
     for (int a = 0; a < 4; a++) {
         opl1[a] = od[a >> 1] + ou[a & 1];
         legs1[a][BIREF_LEG_DOWN_O + (a >> 1)]++, legs1[a][BIREF_LEG_UP_O + (a & 1)]++;
-        biref_phase_eval(sp, fp, opl1[a], legs1[a], &p1[a]);
     }
     /* Pairs (0,1) and (2,3) differ by the same up-leg difference, (0,2) and (1,3) by the same
      * down-leg difference: their table values coincide, only the decay of evanescent legs can
@@ -64,6 +67,35 @@ void biref_reflection_phases(const biref_spectral *sp, const biref_slab_state *s
                 for (int l = 0; l < 4; l++) n[l] = legs1[b][l] - legs1[a][l];
                 biref_phase_eval(sp, fp, d, n, &pair[a][b]);
             }
+        }
+}
+
+void biref_reflection_phases(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                             biref_phase_int p1[4], biref_phase_int pair[4][4])
+{
+    const double complex *od = st->opl_down, *ou = st->opl_up;
+    /* Order-1 paths a = (down x, up y) = (a >> 1, a & 1); the same four sums serve as the extra
+     * round trip of the descendants. */
+    for (int a = 0; a < 4; a++) {
+        int legs[4] = {0, 0, 0, 0};
+        legs[BIREF_LEG_DOWN_O + (a >> 1)]++, legs[BIREF_LEG_UP_O + (a & 1)]++;
+        biref_phase_eval(sp, fp, od[a >> 1] + ou[a & 1], legs, &p1[a]);
+    }
+    biref_order1_pairs(sp, st, fp, pair);
+}
+
+void biref_entry_pairs(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                       biref_phase_int ep[4][4])
+{
+    const double complex *od = st->opl_down, *ou = st->opl_up;
+    for (int a = 0; a < 4; a++)
+        for (int b = 0; b < 4; b++) {
+            /* (down o, down a >> 1, up a & 1) and (down e, down b >> 1, up b & 1) */
+            int n[4] = {0, 0, 0, 0};
+            n[BIREF_LEG_DOWN_E]++, n[BIREF_LEG_DOWN_O + (b >> 1)]++, n[BIREF_LEG_UP_O + (b & 1)]++;
+            n[BIREF_LEG_DOWN_O]--, n[BIREF_LEG_DOWN_O + (a >> 1)]--, n[BIREF_LEG_UP_O + (a & 1)]--;
+            double complex la = od[0] + od[a >> 1] + ou[a & 1], lb = od[1] + od[b >> 1] + ou[b & 1];
+            biref_phase_eval(sp, fp, lb - conj(la), n, &ep[a][b]);
         }
 }
 
@@ -124,17 +156,22 @@ static void transmission(const biref_spectral *sp, const biref_slab_state *st, c
     const double complex(*t01)[2] = st->top.t_down, (*r10)[2] = st->top.r_up;
     const double complex(*r12)[2] = st->bottom.r_down, (*t12)[2] = st->bottom.t_down;
 
-    biref_phase_int h0, trip[2][2];
+    biref_phase_int h0, trip[2][2], pair[4][4], ep[4][4];
     biref_transmission_phases(sp, st, fp, &h0, trip);
+    biref_order1_pairs(sp, st, fp, pair);
+    biref_entry_pairs(sp, st, fp, ep);
     double W[2][2][3];
     transmission_energy(sp, st, W, E);
 
     for (int o = 0; o < 2; o++) {
-        /* Descendant coefficients (eq. 23, m = 1) do not depend on the input. */
-        double complex desc[2][2][2];
+        /* Descendant coefficients (eq. 23, m = 1) do not depend on the input; nor do the last
+         * round trips a = (down x2, up y) of the siblings, from the bottom in mode x. */
+        double complex desc[2][2][2], last[2][4];
         for (int x = 0; x < 2; x++)
             for (int y = 0; y < 2; y++)
                 for (int x2 = 0; x2 < 2; x2++) desc[x][y][x2] = conj(t12[x][o]) * r12[x][y] * r10[y][x2] * t12[x2][o];
+        for (int x = 0; x < 2; x++)
+            for (int a = 0; a < 4; a++) last[x][a] = r12[x][a & 1] * r10[a & 1][a >> 1] * t12[a >> 1][o];
         for (int i = 0; i < 2; i++) {
             double *h = H[i][o];
             h[0] = h[1] = h[2] = 0.0;
@@ -143,6 +180,16 @@ static void transmission(const biref_spectral *sp, const biref_slab_state *st, c
             for (int x = 0; x < 2; x++)
                 for (int y = 0; y < 2; y++)
                     for (int x2 = 0; x2 < 2; x2++) biref_add_re_integral(h, W[i][x], desc[x][y][x2], &trip[y][x2]);
+            /* Siblings (ours): every path arriving at the bottom in mode x, then two different
+             * last round trips a < b (lags: reflection's order-1 pairs); and the order-1 paths
+             * whose entry legs differ, (o, a) and (e, b). */
+            for (int x = 0; x < 2; x++)
+                for (int a = 0; a < 4; a++)
+                    for (int b = a + 1; b < 4; b++)
+                        biref_add_re_integral(h, W[i][x], conj(last[x][a]) * last[x][b], &pair[a][b]);
+            const double complex ent = conj(t01[i][0]) * t01[i][1];
+            for (int a = 0; a < 4; a++)
+                for (int b = 0; b < 4; b++) biref_add_re_integral(h, ONE, ent * conj(last[0][a]) * last[1][b], &ep[a][b]);
         }
     }
 }

@@ -51,8 +51,10 @@ static void transmission(const biref_spectral *sp, const biref_slab_state *st, c
                          const double complex C[2][2], const double complex (*P)[2], double E[3], double H[3])
 {
     const double complex(*r10)[2] = st->top.r_up, (*r12)[2] = st->bottom.r_down;
-    biref_phase_int h0, trip[2][2];
+    biref_phase_int h0, trip[2][2], pair[4][4], ep[4][4];
     biref_transmission_phases(sp, st, fp, &h0, trip);
+    biref_order1_pairs(sp, st, fp, pair);
+    biref_entry_pairs(sp, st, fp, ep);
 
     double complex Ein[2][2], TP[2][2], Xout[2][2];
     entry_matrix(C, st->top.t_down, Ein);
@@ -76,6 +78,22 @@ static void transmission(const biref_spectral *sp, const biref_slab_state *st, c
         for (int x2 = 0; x2 < 2; x2++)
             for (int x = 0; x < 2; x++)
                 biref_add_re_integral(H, W[0][x], r12[x][y] * r10[y][x2] * Xout[x][x2], &trip[y][x2]);
+    /* Siblings (analytic.c): from the bottom in mode x, two last round trips a < b, a = (down x2,
+     * up y), with the lags of reflection's order-1 pairs. */
+    for (int x = 0; x < 2; x++)
+        for (int a = 0; a < 4; a++)
+            for (int b = a + 1; b < 4; b++) {
+                int ya = a & 1, xa = a >> 1, yb = b & 1, xb = b >> 1;
+                double complex c = conj(r12[x][ya] * r10[ya][xa]) * r12[x][yb] * r10[yb][xb] * Xout[xa][xb];
+                biref_add_re_integral(H, W[0][x], c, &pair[a][b]);
+            }
+    /* The order-1 paths whose entry legs differ, (o, a) and (e, b). */
+    for (int a = 0; a < 4; a++)
+        for (int b = 0; b < 4; b++) {
+            int ya = a & 1, xa = a >> 1, yb = b & 1, xb = b >> 1;
+            double complex c = Ein[0][1] * conj(r12[0][ya] * r10[ya][xa]) * r12[1][yb] * r10[yb][xb] * Xout[xa][xb];
+            biref_add_re_integral(H, ONE, c, &ep[a][b]);
+        }
 }
 
 static void reflection(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,

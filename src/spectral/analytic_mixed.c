@@ -76,6 +76,11 @@ static void paper_both(const biref_spectral *sp, const biref_slab_state *st, dou
             }
         }
     int any_p1 = !p1[0].zero || !p1[1].zero || !p1[2].zero || !p1[3].zero;
+    /* Transmission's order-1 pairs whose entry legs differ (biref_entry_pairs). */
+    phase_term ep[4][4];
+    for (int a = 0; a < 4; a++)
+        for (int b = 0; b < 4; b++)
+            phase_at(sp, (od[1] + od[b >> 1] + ou[b & 1]) - conj(od[0] + od[a >> 1] + ou[a & 1]), &ep[a][b]);
 
     double ed[2][3], eu[2][3];
     for (int k = 0; k < 2; k++) biref_leg_energy(sp, od[k], ed[k]), biref_leg_energy(sp, ou[k], eu[k]);
@@ -88,12 +93,14 @@ static void paper_both(const biref_spectral *sp, const biref_slab_state *st, dou
                 for (int j = 0; j < 3; j++) w0[i][x][j] = biref_abs2(t01[i][x]) * ed[x][j];
         biref_path_energies((const double(*)[2][3])w0, 2, r12, eu, r10, ed, W);
         for (int o = 0; o < 2; o++) {
-            double complex desc[2][2][2];
+            double complex desc[2][2][2], last[2][4];
             if (any_p1)
                 for (int x = 0; x < 2; x++)
                     for (int y = 0; y < 2; y++)
                         for (int x2 = 0; x2 < 2; x2++)
                             desc[x][y][x2] = conj(t12[x][o]) * r12[x][y] * r10[y][x2] * t12[x2][o];
+            for (int x = 0; x < 2; x++)
+                for (int a = 0; a < 4; a++) last[x][a] = r12[x][a & 1] * r10[a & 1][a >> 1] * t12[a >> 1][o];
             for (int i = 0; i < 2; i++) {
                 double h[3] = {0.0, 0.0, 0.0};
                 if (!h0.zero) add_1(h, conj(t01[i][0] * t12[0][o]) * t01[i][1] * t12[1][o], &h0);
@@ -104,6 +111,14 @@ static void paper_both(const biref_spectral *sp, const biref_slab_state *st, dou
                                 const phase_term *p = &p1[(x2 << 1) | y]; /* down x2 + up y */
                                 if (!p->zero) add_w(h, W[i][x], desc[x][y][x2], p);
                             }
+                for (int x = 0; x < 2; x++) /* siblings: two last round trips a < b */
+                    for (int a = 0; a < 4; a++)
+                        for (int b = a + 1; b < 4; b++)
+                            if (!pair[a][b].zero) add_w(h, W[i][x], conj(last[x][a]) * last[x][b], &pair[a][b]);
+                const double complex ent = conj(t01[i][0]) * t01[i][1];
+                for (int a = 0; a < 4; a++)
+                    for (int b = 0; b < 4; b++)
+                        if (!ep[a][b].zero) add_1(h, ent * conj(last[0][a]) * last[1][b], &ep[a][b]);
                 for (int j = 0; j < 3; j++) {
                     double e = W[i][0][j] * biref_abs2(t12[0][o]) + W[i][1][j] * biref_abs2(t12[1][o]);
                     E[BIREF_TRANSMISSION][i][o][j] = e;

@@ -81,6 +81,14 @@ void biref_transmission_phases(const biref_spectral *sp, const biref_slab_state 
                                biref_phase_int *h0, biref_phase_int trip[2][2]);
 void biref_reflection_phases(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
                              biref_phase_int p1[4], biref_phase_int pair[4][4]);
+/* Reflection's pairs alone: pair[a][b] (a < b) of the order-1 paths a = (down a >> 1, up a & 1).
+ * They are also the lags between two last round trips (down x2, up y) of transmission's siblings. */
+void biref_order1_pairs(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                        biref_phase_int pair[4][4]);
+/* Transmission's order-1 pairs whose entry legs differ: ep[a][b] of the paths (down o, then the
+ * round trip a) and (down e, then b), a = (down a >> 1, up a & 1) after the first reflection. */
+void biref_entry_pairs(const biref_spectral *sp, const biref_slab_state *st, const biref_opl_footprint *fp,
+                       biref_phase_int ep[4][4]);
 
 /* The analytic method for a general light (analytic_general.c): incident coherency C, analyzer P
  * (NULL: none), for which = BIREF_TRANSMISSION or BIREF_REFLECTION, with every phase integral

@@ -11,9 +11,9 @@ expect_grep "help lists --material" "--material"
 expect_grep "help lists --thickness-um" "--thickness-um"
 
 # Per plate: the expansion's largest ΔE00 over the grid (1), the analytic method's mean and max up to
-# 70° (the paper's envelope, 1 and 4, the max where eq. 26 itself does not exceed it with constant
-# indices), and the analytic method against itself with constant indices (mean + 0.1, max + 0.5):
-# docs/ACCURACY-DISPERSION.md.
+# 70° (the paper's envelope, 1 and 4, on every plate: LiNbO3 between crossed filters reached 5.9 before
+# transmission kept its siblings), and the analytic method against itself with constant indices
+# (mean + 0.1, max + 0.5; measured: +0.04 and +0.30, LiNbO3): docs/ACCURACY-DISPERSION.md.
 plates=(calcite:1.0 quartz:1.0 rutile:1.0 linbo3:1.0 sapphire:1.0)
 # The sanitizer run (BIREF_TEST_QUICK): one plate on a 20° grid.
 [ -n "${BIREF_TEST_QUICK:-}" ] && { plates=(calcite:1.0); grid=(--theta-max-deg 80 --theta-step-deg 20 --threads 2); }
@@ -31,9 +31,11 @@ for light, sides in r["lights"].items():
         a, e, c = k["analytic"], k["expansion"], k["constant"]
         if e["max"] > bound: bad.append(f"{light} {side}: expansion max {e['max']:.2f} > {bound}")
         if a["mean"] > 1.0: bad.append(f"{light} {side}: analytic mean {a['mean']:.2f} > 1")
-        if a["max"] > max(4.0, c["max"] + 0.5): bad.append(f"{light} {side}: analytic max {a['max']:.2f}")
+        if a["max"] > 4.0: bad.append(f"{light} {side}: analytic max {a['max']:.2f} > 4")
+        if a["max"] > c["max"] + 0.5: bad.append(f"{light} {side}: analytic max {a['max']:.2f} vs constant {c['max']:.2f}")
         if a["mean"] > c["mean"] + 0.1: bad.append(f"{light} {side}: analytic mean {a['mean']:.2f} vs constant {c['mean']:.2f}")
         if not (k["ignoring"]["max"] >= 0): bad.append(f"{light} {side}: no ignoring-dispersion error")
+if not r["pass"]: bad.append("the study's pass is false")
 for key in ("material", "thickness_um", "theta_max_deg", "theta_step_deg", "analytic_theta_max_deg", "criteria", "pass"):
     if key not in r: bad.append("missing key " + key)
 if bad:

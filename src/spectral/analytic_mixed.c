@@ -44,6 +44,21 @@ static inline void add_1(double out[3], double complex coef, const phase_term *p
     for (int j = 0; j < 3; j++) out[j] += p->att[j] * (a * p->c[j] - b * p->s[j]);
 }
 
+/* The analytic-pairs method's terms of transmission (analytic.c): the siblings, two last round
+ * trips a < b from the bottom in mode x (lags: reflection's order-1 pairs), and the order-1 pairs
+ * whose entry legs differ; ent = conj(t01[i][o]) t01[i][e]. */
+static void add_pairs(double h[3], const double W[2][3], const double complex last[2][4], double complex ent,
+                      const phase_term pair[4][4], const phase_term ep[4][4])
+{
+    for (int x = 0; x < 2; x++)
+        for (int a = 0; a < 4; a++)
+            for (int b = a + 1; b < 4; b++)
+                if (!pair[a][b].zero) add_w(h, W[x], conj(last[x][a]) * last[x][b], &pair[a][b]);
+    for (int a = 0; a < 4; a++)
+        for (int b = 0; b < 4; b++)
+            if (!ep[a][b].zero) add_1(h, ent * conj(last[0][a]) * last[1][b], &ep[a][b]);
+}
+
 /* E and X = E + 2H (eqs. 19-26) of both directions, [direction][in][out][band]. */
 static void paper_both(const biref_spectral *sp, const biref_slab_state *st, int pairs, double E[2][2][2][3],
                        double X[2][2][2][3])
@@ -113,16 +128,9 @@ static void paper_both(const biref_spectral *sp, const biref_slab_state *st, int
                                 const phase_term *p = &p1[(x2 << 1) | y]; /* down x2 + up y */
                                 if (!p->zero) add_w(h, W[i][x], desc[x][y][x2], p);
                             }
-                if (pairs) { /* analytic-pairs: siblings, two last round trips a < b; entry pairs */
-                    for (int x = 0; x < 2; x++)
-                        for (int a = 0; a < 4; a++)
-                            for (int b = a + 1; b < 4; b++)
-                                if (!pair[a][b].zero) add_w(h, W[i][x], conj(last[x][a]) * last[x][b], &pair[a][b]);
-                    const double complex ent = conj(t01[i][0]) * t01[i][1];
-                    for (int a = 0; a < 4; a++)
-                        for (int b = 0; b < 4; b++)
-                            if (!ep[a][b].zero) add_1(h, ent * conj(last[0][a]) * last[1][b], &ep[a][b]);
-                }
+                if (pairs) add_pairs(h, (const double(*)[3])W[i], (const double complex(*)[4])last,
+                                     conj(t01[i][0]) * t01[i][1], (const phase_term(*)[4])pair,
+                                     (const phase_term(*)[4])ep);
                 for (int j = 0; j < 3; j++) {
                     double e = W[i][0][j] * biref_abs2(t12[0][o]) + W[i][1][j] * biref_abs2(t12[1][o]);
                     E[BIREF_TRANSMISSION][i][o][j] = e;

@@ -74,10 +74,15 @@ ALLOWED_CALL_FILE_CYCLES = [
     ("spectral/analytic_dispersive.c", "spectral/numeric_dispersive.c"),
     # the spectral methods: numeric_jones.c asks analytic_packet.c which instruction sets the CPU
     # has (biref_simd_isa_supported), and analytic_packet.c falls back through coherent.c and
-    # numeric.c to numeric_jones.c; the instruction-set choice in a file of its own breaks it
+    # numeric.c to numeric_jones.c (and the lanes' dispersive look-ups through leg_dispersion.c);
+    # the instruction-set choice in a file of its own breaks it
     ("spectral/analytic_packet.c", "spectral/analytic_packet_avx2.c", "spectral/analytic_packet_avx512.c",
-     "spectral/analytic_packet_baseline.c", "spectral/coherent.c", "spectral/numeric.c",
-     "spectral/numeric_jones.c", "spectral/phase_prefilter.c", "spectral/spectral_context.c"),
+     "spectral/analytic_packet_baseline.c", "spectral/analytic_packet_f32_avx2.c",
+     "spectral/analytic_packet_f32_avx512.c", "spectral/analytic_packet_f32_pairs_avx2.c",
+     "spectral/analytic_packet_f32_pairs_avx512.c", "spectral/analytic_packet_pairs_avx2.c",
+     "spectral/analytic_packet_pairs_avx512.c", "spectral/analytic_packet_pairs_baseline.c",
+     "spectral/coherent.c", "spectral/leg_dispersion.c", "spectral/numeric.c", "spectral/numeric_jones.c",
+     "spectral/phase_prefilter.c", "spectral/spectral_context.c"),
 ]
 
 SOURCE = re.compile(r"\.(c|h|inc)$")

@@ -186,6 +186,26 @@ static void remember(biref_lag_cache *lc, const int n[4], const double complex (
         for (int j = 0; j < 3; j++) lc->c[i][e][j] = creal(node[e][j]), lc->s[i][e][j] = cimag(node[e][j]);
 }
 
+void biref_subband_moments(const biref_spectral *sp, const biref_subbands *sb, const double *Phi, const double *G,
+                           int level, int far, double complex m0[3], double complex m1[3])
+{
+    const double *k = biref_subband_points(sb);
+    if (level > 0) {
+        biref_subband_sum(sb, Phi, G, k, level, m0, m1);
+        return;
+    }
+    double complex rot;
+    double g, c0[3], s0[3];
+    biref_subband_tangent(Phi, G, k, 0, 0, &rot, &g);
+    biref_spectral_phase_integrals(sp, g, c0, s0);
+    const double cp = creal(rot), sn = cimag(rot);
+    for (int j = 0; j < 3; j++) m0[j] = (cp * c0[j] - sn * s0[j]) + I * (sn * c0[j] + cp * s0[j]);
+    if (far) return;
+    double complex t[3], tk[3];
+    spectral_table_eval_moment(sp, sp->table, fabs(g), t, tk);
+    for (int j = 0; j < 3; j++) m1[j] = rot * (g < 0.0 ? conj(tk[j]) : tk[j]);
+}
+
 void biref_lag_integrals(const biref_spectral *sp, biref_leg_dispersion *ld, double opd, const int n[4],
                          double c[3], double s[3], int *level_out, double *residual_out)
 {
@@ -216,22 +236,7 @@ void biref_lag_integrals(const biref_spectral *sp, biref_leg_dispersion *ld, dou
     /* m0 the whole band's integral, m1 its first moment in k, which the nodes' weights need. */
     double complex m0[3], m1[3], node[BIREF_BAND_NODES][3];
     const int far = level == 0 && !(fabs(G[last / 2]) <= sp->d_max);
-    if (level == 0) {
-        /* The band's own table, which also covers the lags beyond the sub-band tables. */
-        double complex rot;
-        double g;
-        biref_subband_tangent(Phi, G, k, 0, 0, &rot, &g);
-        double c0[3], s0[3];
-        biref_spectral_phase_integrals(sp, g, c0, s0);
-        const double cp = creal(rot), sn = cimag(rot);
-        for (int j = 0; j < 3; j++) m0[j] = (cp * c0[j] - sn * s0[j]) + I * (sn * c0[j] + cp * s0[j]);
-        if (!far) {
-            double complex t[3], tk[3];
-            spectral_table_eval_moment(sp, sp->table, fabs(g), t, tk);
-            for (int j = 0; j < 3; j++) m1[j] = rot * (g < 0.0 ? conj(tk[j]) : tk[j]);
-        }
-    } else
-        biref_subband_sum(ld->sb, Phi, G, k, level, m0, m1);
+    biref_subband_moments(sp, ld->sb, Phi, G, level, far, m0, m1);
     biref_lag_node_integrals(biref_subband_nodes(ld->sb), m0, m1, far, node);
     remember(ld->cache, n, (const double complex(*)[3])node);
     const double complex *out = ld->node >= 0 ? node[ld->node] : m0;

@@ -223,19 +223,7 @@ static double phase_moments(const biref_stack_legs *L, const double *Phi, const 
         while (res > BIREF_SUBBAND_PHASE_TOL && level < BIREF_SUBBAND_LEVELS)
             res = biref_subband_level_residual(Phi, G, k, ++level);
     *far = !inside;
-    if (level > 0) {
-        biref_subband_sum(L->sb, Phi, G, k, level, m0, m1);
-        return res;
-    }
-    double complex rot, t[3], tk[3];
-    double g, c0[3], s0[3];
-    biref_subband_tangent(Phi, G, k, 0, 0, &rot, &g);
-    biref_spectral_phase_integrals(sp, g, c0, s0);
-    for (int j = 0; j < 3; j++) m0[j] = rot * (c0[j] + I * s0[j]);
-    if (inside) {
-        spectral_table_eval_moment(sp, sp->table, fabs(g), t, tk);
-        for (int j = 0; j < 3; j++) m1[j] = rot * (g < 0.0 ? conj(tk[j]) : tk[j]);
-    }
+    biref_subband_moments(sp, L->sb, Phi, G, level, !inside, m0, m1);
     return inside ? res : 0.0;
 }
 

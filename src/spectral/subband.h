@@ -140,5 +140,12 @@ void biref_subband_tangent(const double *Phi, const double *G, const double *k, 
  * m1 = S(k e^{iΦ}, Λ_j). */
 void biref_subband_sum(const biref_subbands *sb, const double *Phi, const double *G, const double *k, int level,
                        double complex m0[3], double complex m1[3]);
+/* m0 = S(e^{iΦ}, Λ_j) and m1 = S(k e^{iΦ}, Λ_j) of a phase once its level is chosen: the sums of
+ * level's sub-bands (level > 0), else the band's own table at the middle tangent, which also
+ * covers the lags beyond the sub-band tables; far: beyond them, where the integral has all but
+ * vanished and m1 is neither needed nor set. At level 0 only the ends and the middle of Phi and G
+ * are read. */
+void biref_subband_moments(const biref_spectral *sp, const biref_subbands *sb, const double *Phi, const double *G,
+                           int level, int far, double complex m0[3], double complex m1[3]);
 
 #endif

@@ -73,53 +73,23 @@ typedef struct {
  * mask unused): the general terms (analytic_general.c) with the phase integrals as above; a packet
  * with a complex light (Ci or Pi not 0) needs S(sin kD) too, which only the point look-ups give:
  * with fp, its hits are marked scalar. */
-typedef void (*biref_packet_hits_kernel)(const biref_spectral *sp, const double w_in[2], const double mask[2],
-                                         const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3],
-                                         unsigned char *scalar, const biref_opl_footprint *fp,
-                                         const biref_packet_hit_light *lights);
+typedef void biref_packet_hits_fn(const biref_spectral *sp, const double w_in[2], const double mask[2],
+                                  const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3],
+                                  unsigned char *scalar, const biref_opl_footprint *fp,
+                                  const biref_packet_hit_light *lights);
+typedef biref_packet_hits_fn *biref_packet_hits_kernel;
 
-void biref_packet_hits_baseline(const biref_spectral *sp, const double w_in[2], const double mask[2],
-                                const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3],
-                                unsigned char *scalar, const biref_opl_footprint *fp,
-                                const biref_packet_hit_light *lights);
-void biref_packet_hits_avx2(const biref_spectral *sp, const double w_in[2], const double mask[2],
-                            const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3],
-                            unsigned char *scalar, const biref_opl_footprint *fp,
-                                const biref_packet_hit_light *lights);
-void biref_packet_hits_avx512(const biref_spectral *sp, const double w_in[2], const double mask[2],
-                              const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3],
-                              unsigned char *scalar, const biref_opl_footprint *fp,
-                                const biref_packet_hit_light *lights);
+biref_packet_hits_fn biref_packet_hits_baseline, biref_packet_hits_avx2, biref_packet_hits_avx512;
 
 /* The same with float lanes for the terms (analytic_packet_f32_kernel.inc: set-up and look-ups in
  * double, coefficients and phase integrals then rounded to float): results within ~1e-6 of the
  * double kernels' above, which stay the reference. A light per hit takes the double kernel. */
-void biref_packet_hits_f32_avx2(const biref_spectral *sp, const double w_in[2], const double mask[2],
-                                const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3],
-                                unsigned char *scalar, const biref_opl_footprint *fp,
-                                const biref_packet_hit_light *lights);
-void biref_packet_hits_f32_avx512(const biref_spectral *sp, const double w_in[2], const double mask[2],
-                                  const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3],
-                                  unsigned char *scalar, const biref_opl_footprint *fp,
-                                  const biref_packet_hit_light *lights);
+biref_packet_hits_fn biref_packet_hits_f32_avx2, biref_packet_hits_f32_avx512;
 
 /* The same kernels for the analytic-pairs method (PACKET_PAIRS 1: eq. 26 plus transmission's
  * siblings and entry pairs), compiled from the same sources (analytic_packet_pairs_*.c). */
-void biref_packet_hits_pairs_baseline(const biref_spectral *sp, const double w_in[2], const double mask[2],
-    const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3], unsigned char *scalar,
-    const biref_opl_footprint *fp, const biref_packet_hit_light *lights);
-void biref_packet_hits_pairs_avx2(const biref_spectral *sp, const double w_in[2], const double mask[2],
-    const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3], unsigned char *scalar,
-    const biref_opl_footprint *fp, const biref_packet_hit_light *lights);
-void biref_packet_hits_pairs_avx512(const biref_spectral *sp, const double w_in[2], const double mask[2],
-    const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3], unsigned char *scalar,
-    const biref_opl_footprint *fp, const biref_packet_hit_light *lights);
-void biref_packet_hits_f32_pairs_avx2(const biref_spectral *sp, const double w_in[2], const double mask[2],
-    const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3], unsigned char *scalar,
-    const biref_opl_footprint *fp, const biref_packet_hit_light *lights);
-void biref_packet_hits_f32_pairs_avx512(const biref_spectral *sp, const double w_in[2], const double mask[2],
-    const biref_packet_hits *hits, size_t n, double (*T)[3], double (*R)[3], unsigned char *scalar,
-    const biref_opl_footprint *fp, const biref_packet_hit_light *lights);
+biref_packet_hits_fn biref_packet_hits_pairs_baseline, biref_packet_hits_pairs_avx2, biref_packet_hits_pairs_avx512;
+biref_packet_hits_fn biref_packet_hits_f32_pairs_avx2, biref_packet_hits_f32_pairs_avx512;
 
 /* The instruction sets, fastest last. */
 typedef enum {

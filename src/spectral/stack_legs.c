@@ -215,13 +215,11 @@ static double phase_moments(const biref_stack_legs *L, const double *Phi, const 
                             double complex m1[3], int *far)
 {
     const biref_spectral *sp = L->sp;
-    const double *k = biref_subband_points(L->sb);
-    int inside = 1, level = 0;
+    int inside = 1;
     for (int p = 0; inside && p < BIREF_SUBBAND_POINTS; p++) inside = fabs(G[p]) <= sp->d_max;
-    double res = biref_subband_level_residual(Phi, G, k, 0);
-    if (inside)
-        while (res > BIREF_SUBBAND_PHASE_TOL && level < BIREF_SUBBAND_LEVELS)
-            res = biref_subband_level_residual(Phi, G, k, ++level);
+    double res;
+    const int level =
+        biref_subband_level(sp, Phi, G, biref_subband_points(L->sb), 0, BIREF_SUBBAND_POINTS - 1, NULL, NULL, &res);
     *far = !inside;
     biref_subband_moments(sp, L->sb, Phi, G, level, !inside, m0, m1);
     return inside ? res : 0.0;

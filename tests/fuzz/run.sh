@@ -48,7 +48,7 @@ for t in "${targets[@]}"; do
     continue
   fi
   # Coverage reached (cov: edges, ft: features) and inputs run, for comparing run lengths.
-  grep -E '^#[0-9]+ +DONE' "$scratch/$t.log" | tail -1 | sed "s/^/fuzz: $t: /" >&2 || true
+  grep -E '^#[0-9]+[[:space:]]+DONE' "$scratch/$t.log" | tail -1 | sed "s/^/fuzz: $t: /" >&2 || true
   grep -E '^stat::number_of_executed_units|^stat::new_units_added' "$scratch/$t.log" | sed "s/^/fuzz: $t: /" >&2 || true
 done
 [ "$failed" = 0 ] || exit 1

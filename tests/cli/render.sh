@@ -124,10 +124,19 @@ expect_error "chroma map unwritable" render "$good" -o "$tmpdir/c.png" "${small[
 
 # bench: JSON keys, extrapolation under a tiny budget.
 expect_ok "bench json" bench --scene "$good" --width 32 --height 18 --methods analytic,numeric-8 --max-seconds 2 --json
-for key in width height threads methods method ms_per_frame ns_per_pixel extrapolated; do
+for key in width height threads methods method ms_per_frame ns_per_pixel extrapolated frames_timed first_frame_ms \
+  first_frame_cpu_ms; do
   expect_grep "bench key $key" "\"$key\":"
 done
 expect_grep "bench antialias none by default" '"antialias":[[:space:]]*"none"'
+# Whole frames after the first are timed (the budget allows them at this size); --frames 0 times
+# the first alone; the gl backend needs a frame to time.
+expect_ok "bench json again" bench --scene "$good" --width 32 --height 18 --methods analytic --json
+expect_grep "bench times frames after the first" '"frames_timed":[[:space:]]*[1-9]'
+expect_ok "bench first frame alone" bench --scene "$good" --width 32 --height 18 --methods analytic --frames 0 --json
+expect_grep "bench frames 0" '"frames_timed":[[:space:]]*0,'
+expect_error "bench gl without frames" bench --scene "$good" --width 32 --height 18 --methods analytic --backend gl \
+  --frames 0
 expect_ok "bench extrapolates" bench --scene "$good" --width 32 --height 18 --methods ground-truth \
   --max-seconds 0.001 --json
 expect_grep "bench extrapolated true" '"extrapolated":[[:space:]]*true'

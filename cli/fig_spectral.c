@@ -211,7 +211,9 @@ static const material FIG7_MATERIALS[] = {
     {"m3", "η_o 1.775, A = fig. 9c axis, d 100 µm", 1.775, 0, {0.084, 0.979, -0.187}, 100e3},
 };
 static const double FIG7_DEPS[] = {-0.3, -0.1, -0.03, 0.03, 0.1, 0.3};
-enum { FIG7_NM = 3, FIG7_ND = 6, FIG7_ROWS = 3 };
+/* Rows: the paper's analytic method (eq. 26) in three lights, then analytic-pairs (beyond the
+ * paper) between crossed polarisers, where eq. 26 errs most. */
+enum { FIG7_NM = 3, FIG7_ND = 6, FIG7_ROWS = 4 };
 
 int fig7(const fig_ctx *c)
 {
@@ -219,7 +221,7 @@ int fig7(const fig_ctx *c)
     const int nphi = c->quick ? 2 : 12;   /* azimuths of the optic axis about the normal */
     const size_t ncell = (size_t)FIG7_NM * FIG7_ND * (size_t)nth;
     /* [row][cell]: row 0 unpolarised at phi = 0, row 1 unpolarised azimuth-averaged,
-     * row 2 crossed (s in, p out) azimuth-averaged. */
+     * row 2 crossed (s in, p out) azimuth-averaged, row 3 the same by analytic-pairs. */
     double *de = calloc(ncell * FIG7_ROWS, sizeof(double));
     double *th = malloc(sizeof(double) * (size_t)nth);
     if (!de || !th) return free(de), free(th), cli_error(FIG_CMD, "out of memory"), CLI_EXIT_FAIL;
@@ -230,7 +232,7 @@ int fig7(const fig_ctx *c)
         int m = (int)(k / ((long)FIG7_ND * nth)), d = (int)(k / nth % FIG7_ND), t = (int)(k % nth);
         const material *mt = &FIG7_MATERIALS[m];
         double eps_e = mt->eta_o * mt->eta_o + FIG7_DEPS[d];
-        double acc[FIG7_ROWS] = {0, 0, 0};
+        double acc[FIG7_ROWS] = {0, 0, 0, 0};
         for (int p = 0; p < nphi; p++) {
             /* Rotating the axis about the slab normal (y) by phi is the same as turning the slab
              * under a fixed plane of incidence. */
@@ -243,8 +245,9 @@ int fig7(const fig_ctx *c)
                 failed++;
                 continue;
             }
-            biref_spectrum sa, sg;
+            biref_spectrum sa, sg, sq;
             biref_spectrum_analytic(c->sp, &st, &sa);
+            biref_spectrum_analytic_pairs(c->sp, &st, &sq);
             biref_spectrum_numeric(c->gt, &st, &sg);
             double a[3], g[3];
             transmitted_xyz(&sa, LIGHT_UNPOLARIZED, a);
@@ -255,6 +258,8 @@ int fig7(const fig_ctx *c)
             transmitted_xyz(&sa, LIGHT_S_TO_P, a);
             transmitted_xyz(&sg, LIGHT_S_TO_P, g);
             acc[2] += biref_delta_e00_xyz(a, g) / nphi;
+            transmitted_xyz(&sq, LIGHT_S_TO_P, a);
+            acc[3] += biref_delta_e00_xyz(a, g) / nphi;
         }
         for (int r = 0; r < FIG7_ROWS; r++) de[r * ncell + (size_t)k] = acc[r];
     }
@@ -265,32 +270,36 @@ int fig7(const fig_ctx *c)
     if (!out) return free(de), free(th), CLI_EXIT_FAIL;
     FILE *f = biref_outfile_stream(out);
     fprintf(f, "material,eta_o,eta_e,delta_eps,thickness_nm,theta_deg,dE00_unpolarized_phi0,"
-               "dE00_unpolarized_phi_avg,dE00_crossed_s_to_p_phi_avg,azimuths\n");
-    double rmax[FIG7_ROWS] = {0, 0, 0};
+               "dE00_unpolarized_phi_avg,dE00_crossed_s_to_p_phi_avg,dE00_crossed_s_to_p_phi_avg_analytic_pairs,"
+               "azimuths\n");
+    double rmax[FIG7_ROWS] = {0, 0, 0, 0};
     for (size_t k = 0; k < ncell; k++) {
         int m = (int)(k / ((size_t)FIG7_ND * nth)), d = (int)(k / nth % FIG7_ND), t = (int)(k % nth);
         const material *mt = &FIG7_MATERIALS[m];
-        fprintf(f, "%s,%g,%.6f,%g,%g,%g,%.5f,%.5f,%.5f,%d\n", mt->tag, mt->eta_o,
+        fprintf(f, "%s,%g,%.6f,%g,%g,%g,%.5f,%.5f,%.5f,%.5f,%d\n", mt->tag, mt->eta_o,
                 sqrt(mt->eta_o * mt->eta_o + FIG7_DEPS[d]), FIG7_DEPS[d], mt->d_nm, th[t], de[k], de[ncell + k],
-                de[2 * ncell + k], nphi);
+                de[2 * ncell + k], de[3 * ncell + k], nphi);
         for (int r = 0; r < FIG7_ROWS; r++) rmax[r] = fmax(rmax[r], de[r * ncell + k]);
     }
     if (fig_close_csv(out, path)) return free(de), free(th), CLI_EXIT_FAIL;
 
     fig_out_path(c, "fig7.png", path, sizeof path);
-    if (fig_begin(path, 1500, 1200, FIG7_NM, FIG7_ROWS)) return free(de), free(th), CLI_EXIT_FAIL;
+    if (fig_begin(path, 1500, 1600, FIG7_NM, FIG7_ROWS)) return free(de), free(th), CLI_EXIT_FAIL;
     static const int colors[FIG7_ND] = {FIG_BLUE, FIG_CYAN, FIG_GREEN, FIG_ORANGE, FIG_RED, FIG_PURPLE};
     static const char *const labels[FIG7_ND] = {"Δε = -0.3", "Δε = -0.1", "Δε = -0.03",
                                                 "Δε = +0.03", "Δε = +0.1", "Δε = +0.3"};
     static const char *const rowname[FIG7_ROWS] = {"unpolarised, φ = 0", "unpolarised, φ-averaged",
-                                                   "s in, p out, φ-averaged"};
+                                                   "s in, p out, φ-averaged",
+                                                   "s in, p out, φ-averaged: analytic-pairs"};
     /* PLplot fills panels row by row, so loop rows outside. */
     for (int r = 0; r < FIG7_ROWS; r++)
         for (int m = 0; m < FIG7_NM; m++) {
             char title[200];
             snprintf(title, sizeof title, "%s\n%s", FIG7_MATERIALS[m].label, rowname[r]);
-            /* One y scale per row, so materials can be compared across a row. */
-            fig_plot_panel(0, 88, 0, fmax(1.0, rmax[r] * 1.05), "θ (degrees)", "ΔE00", title);
+            /* One y scale per row, so materials can be compared across a row; the two crossed rows
+             * share theirs, so that eq. 26 and analytic-pairs compare at a glance. */
+            const double ytop = r >= 2 ? fmax(rmax[2], rmax[3]) : rmax[r];
+            fig_plot_panel(0, 88, 0, fmax(1.0, ytop * 1.05), "θ (degrees)", "ΔE00", title);
             const double one_x[2] = {0, 88}, one_y[2] = {1, 1};
             fig_plot_line(2, one_x, one_y, FIG_GREY, 1.0);
             for (int d = 0; d < FIG7_ND; d++)

@@ -246,9 +246,10 @@ typedef struct {
     double eta_i;
     int n;
     biref_layer layers[2];
-    int expanded; /* the default method must not fall back (else it may) */
+    int expanded; /* 1: the default method must not fall back; -1: it must at 0 degrees; 0: it may */
     int fine;     /* the reference: numeric with 131072 samples, not the ground truth's 16384 (the
                    * Fabry-Perot fringes of 0.3 mm rutile in air, 0.04 nm apart in the blue) */
+    double bound; /* max dE00 allowed: the measured worst rounded up (docs/STACKS.md) */
 } dispersive_case;
 
 /* max and mean dE00 of a stack's eight s/p pair colours and its light's two (a +45 deg polarizer,
@@ -285,9 +286,15 @@ static void ground_truth_error(const biref_stack *s, double theta, const biref_l
 
 /* The default method against the ground truth (n(λ) at each of 16384 samples) on the common
  * dispersive stacks: thin films, zero- and multi-order wave plates of quartz, calcite and MgF2
- * (the examples among them), and rutile plates, at 0 and 29 degrees. The expansion takes them
- * all (sub-band tangents, stack_legs.c) but the crossed pair of thick rutile plates, where at 29
- * degrees the finest sub-bands are not enough and it falls back (and says so). */
+ * (the examples among them), and rutile plates, at 0 and 29 degrees, each within its measured
+ * bound. The expansion takes them all (sub-band tangents, stack_legs.c) but the crossed pair of
+ * thick rutile plates, where at 29 degrees it has too many groups and falls back (and says so);
+ * the same pair at 0 degrees is the least accurate (0.114: its amplitudes, linear in k between
+ * the bands' two nodes, miss the curvature of rutile's across the x band; docs/STACKS.md). A
+ * rutile plate compensated by a calcite plate (axes parallel: their birefringent group paths
+ * cancel at 554 nm) has a pair whose group path crosses zero and the sub-band tables' end
+ * (-11 to 130 um): the middle tangent is wrong there (dE00 14 when taken), the error estimate
+ * must see it and fall back. */
 static void expansion_matches_ground_truth(void)
 {
     biref_stack zero, multi;
@@ -295,16 +302,17 @@ static void expansion_matches_ground_truth(void)
     CHECK(biref_stack_load("examples/stacks/quartz_multi_order_halfwave.json", &multi, NULL, 0) == BIREF_OK);
     const biref_layer glass = {1.52, 1.52, {0, 1, 0}, 1e6, 1, NULL};
     const dispersive_case cases[] = {
-        {"MgF2 film 1.5 um on glass", 1.0, 2, {{0, 0, {0.6, 0.3, 0.74}, 1500.0, 0, biref_material_find("mgf2")}, glass}, 1, 0},
-        {"quartz zero-order half wave (example)", zero.eta_i, 2, {zero.layers[0], zero.layers[1]}, 1, 0},
-        {"quartz multi-order half wave (example)", multi.eta_i, 1, {multi.layers[0]}, 1, 0},
-        {"quartz multi-order plate 500 um in air", 1.0, 1, {plate("quartz", 30, 500)}, 1, 0},
-        {"MgF2 zero-order quarter wave, cemented", 1.38, 2, {plate("mgf2", 45, 1000), plate("mgf2", 135, 1011.5)}, 1, 0},
-        {"calcite plate 20 um in air", 1.0, 1, {plate("calcite", 45, 20)}, 1, 0},
-        {"calcite plate 20 um on glass", 1.0, 2, {plate("calcite", 20, 20), glass}, 1, 0},
-        {"rutile plate 100 um in air", 1.0, 1, {plate("rutile", 45, 100)}, 1, 0},
-        {"rutile plate 300 um in air", 1.0, 1, {plate("rutile", 45, 300)}, 1, 1},
-        {"rutile zero-order, two 300 um plates crossed", 1.0, 2, {plate("rutile", 45, 300), plate("rutile", 135, 301)}, 0, 1},
+        {"MgF2 film 1.5 um on glass", 1.0, 2, {{0, 0, {0.6, 0.3, 0.74}, 1500.0, 0, biref_material_find("mgf2")}, glass}, 1, 0, 0.075},
+        {"quartz zero-order half wave (example)", zero.eta_i, 2, {zero.layers[0], zero.layers[1]}, 1, 0, 0.075},
+        {"quartz multi-order half wave (example)", multi.eta_i, 1, {multi.layers[0]}, 1, 0, 0.075},
+        {"quartz multi-order plate 500 um in air", 1.0, 1, {plate("quartz", 30, 500)}, 1, 0, 0.075},
+        {"MgF2 zero-order quarter wave, cemented", 1.38, 2, {plate("mgf2", 45, 1000), plate("mgf2", 135, 1011.5)}, 1, 0, 0.075},
+        {"calcite plate 20 um in air", 1.0, 1, {plate("calcite", 45, 20)}, 1, 0, 0.075},
+        {"calcite plate 20 um on glass", 1.0, 2, {plate("calcite", 20, 20), glass}, 1, 0, 0.075},
+        {"rutile plate 100 um in air", 1.0, 1, {plate("rutile", 45, 100)}, 1, 0, 0.075},
+        {"rutile plate 300 um in air", 1.0, 1, {plate("rutile", 45, 300)}, 1, 1, 0.075},
+        {"rutile zero-order, two 300 um plates crossed", 1.0, 2, {plate("rutile", 45, 300), plate("rutile", 135, 301)}, 0, 1, 0.12},
+        {"rutile 150 um compensated by calcite 342 um", 1.0, 2, {plate("rutile", 45, 150), plate("calcite", 45, 342)}, -1, 0, 0.075},
     };
     biref_light light;
     const biref_complex C[2][2] = {{0.5, 0.5}, {0.5, 0.5}}, P[2][2] = {{0.5, -0.5}, {-0.5, 0.5}};
@@ -324,12 +332,13 @@ static void expansion_matches_ground_truth(void)
             ground_truth_error(&s, t * 0.5, &light, cases[c].fine, &max, &mean, &fallback);
             printf("  %-40s %2.0f deg: dE00 max %.3f mean %.3f%s%s\n", cases[c].name, t * 0.5 * 180 / M_PI, max, mean,
                    fallback ? " (numeric fallback)" : "", cases[c].fine ? " (vs 131072 samples)" : "");
-            if (cases[c].expanded) CHECK(!fallback);
+            if (cases[c].expanded > 0) CHECK(!fallback);
+            if (cases[c].expanded < 0 && t == 0) CHECK(fallback);
+            CHECK(max <= cases[c].bound);
             worst = fmax(worst, max);
         }
     }
     printf("  default method vs ground truth: max dE00 %.3g\n", worst);
-    CHECK(worst < 0.2);
 }
 
 /* A material unphysical somewhere in the band is refused with the layer and the reason. */

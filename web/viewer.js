@@ -2,7 +2,9 @@
 // table and the example scenes' uniforms, all from biref_data.js (made by `biref gl-data`).
 // ?scene=NAME&width=W&height=H&view=canvas shows only the canvas at W x H with that example's
 // camera and sets document.title to "biref ready" once the frame is drawn. The first slab's
-// controls may be set from the query too: eta_o, eta_e, thickness_um, axis_tilt, axis_az (deg).
+// controls may be set from the query too: eta_o, eta_e, thickness_um, axis_tilt, axis_az (deg);
+// method=analytic (default, the paper's eq. 26) or analytic-pairs (eq. 26 plus transmission's
+// sibling and entry pairs: the shader's u_pairs), as `biref render --backend gl --method`.
 // Every query value is checked before anything is drawn: a bad one is an error shown in the page
 // (and in document.title as "biref error: ..."), never a silent default or clamp.
 import { shaderSource, table, plans, presets } from './biref_data.js';
@@ -33,10 +35,13 @@ const QUERY_NUMBERS = {
   width: [1, MAX_SIDE, true], height: [1, MAX_SIDE, true], eta_o: [1.2, 2.5], eta_e: [1.2, 2.5],
   thickness_um: [1, 10000], axis_tilt: [0, 180], axis_az: [-180, 180],
 };
+// The shader's methods (the command line's other methods are CPU-only, as with --backend gl).
+const METHODS = ['analytic', 'analytic-pairs'];
+const QUERY_WORDS = ['scene', 'view', 'method'];
 const params = new Map();
 for (const [key, value] of new URLSearchParams(location.search)) {
-  if (key !== 'scene' && key !== 'view' && !Object.hasOwn(QUERY_NUMBERS, key))
-    fail(`unknown query key '${key}' (known: scene, view, ${Object.keys(QUERY_NUMBERS).join(', ')})`);
+  if (!QUERY_WORDS.includes(key) && !Object.hasOwn(QUERY_NUMBERS, key))
+    fail(`unknown query key '${key}' (known: ${QUERY_WORDS.join(', ')}, ${Object.keys(QUERY_NUMBERS).join(', ')})`);
   if (params.has(key)) fail(`query key '${key}' given twice`);
   if (Object.hasOwn(QUERY_NUMBERS, key)) {
     const [lo, hi, integer] = QUERY_NUMBERS[key];
@@ -48,6 +53,8 @@ for (const [key, value] of new URLSearchParams(location.search)) {
   params.set(key, value);
 }
 if (params.has('view') && params.get('view') !== 'canvas') fail(`view: expected canvas, got '${params.get('view')}'`);
+if (params.has('method') && !METHODS.includes(params.get('method')))
+  fail(`method: expected ${METHODS.join(' or ')} (the shader's methods), got '${params.get('method')}'`);
 if (params.has('scene') && !Object.hasOwn(presets, params.get('scene')))
   fail(`unknown scene '${params.get('scene')}' (presets: ${Object.keys(presets).join(', ')})`);
 const canvasOnly = params.get('view') === 'canvas';
@@ -117,6 +124,7 @@ function loadPreset(name) {
   const H = Number(params.get('height') || Math.min(canvasOnly ? p.camera.height : 360, MAX_SIDE));
   const c = p.camera;
   const off = v3.sub(c.position, c.look_at);
+  u.u_pairs = [1, [$('method').value === 'analytic-pairs' ? 1 : 0]];
   state = { name, u, axes: JSON.parse(JSON.stringify(p.axes)), W, H, cam: {
     look_at: c.look_at, up: c.up, fov: c.fov_deg, dist: Math.hypot(...off),
     az: Math.atan2(off[0], off[2]), el: Math.asin(off[1] / Math.hypot(...off)), base: c.position } };
@@ -270,6 +278,12 @@ function start(name, overrides) {
 }
 
 $('preset').innerHTML = Object.keys(presets).map((n) => `<option>${n}</option>`).join('');
+$('method').innerHTML = METHODS.map((n) => `<option>${n}</option>`).join('');
+$('method').value = params.get('method') || 'analytic';
+$('method').addEventListener('change', () => {
+  state.u.u_pairs = [1, [$('method').value === 'analytic-pairs' ? 1 : 0]];
+  redraw();
+});
 $('preset').addEventListener('change', () => { document.title = 'biref'; start($('preset').value); });
 $('slab').addEventListener('change', syncControls);
 for (const id of ['eta_o', 'eta_e', 'thick', 'axis_tilt', 'axis_az']) $(id).addEventListener('input', onSlab);

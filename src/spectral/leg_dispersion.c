@@ -114,6 +114,39 @@ static void lag_at(biref_leg_dispersion *ld, const int n[4], int p, double *Phi,
     }
 }
 
+/* lag_at as biref_subband_level samples the points it needs. */
+typedef struct {
+    biref_leg_dispersion *ld;
+    const int *n;
+    double *Phi, *G;
+} lag_sampler;
+
+static void sample_lag(void *ctx, int p)
+{
+    const lag_sampler *at = ctx;
+    lag_at(at->ld, at->n, p, at->Phi, at->G);
+}
+
+int biref_subband_level(const biref_spectral *sp, const double *Phi, const double *G, const double *k, int from,
+                        int to, void (*sample_point)(void *ctx, int p), void *ctx, double *residual)
+{
+    const int mid = (BIREF_SUBBAND_POINTS - 1) / 2;
+    int level = 0;
+    double res = biref_subband_level_residual(Phi, G, k, 0);
+    /* Level 0 needs the ends and the middle; the finer levels every point, each tangent's group
+     * path within the tables (the middle's first: where a look-up most often leaves them). */
+    int inside = res > BIREF_SUBBAND_PHASE_TOL && fabs(G[mid]) <= sp->d_max;
+    for (int p = from; inside && p <= to; p++) {
+        if (sample_point && p != mid) sample_point(ctx, p);
+        inside = fabs(G[p]) <= sp->d_max;
+    }
+    if (inside)
+        while (res > BIREF_SUBBAND_PHASE_TOL && level < BIREF_SUBBAND_LEVELS)
+            res = biref_subband_level_residual(Phi, G, k, ++level);
+    *residual = res;
+    return level;
+}
+
 /* The tangent of sub-band b of `level` (level 0: the whole range) at its midpoint: the offset
  * e^{i(Φ(k_b) − k_b G_b)} and the group path G_b. */
 void biref_subband_tangent(const double *Phi, const double *G, const double *k, int level, int b,
@@ -223,16 +256,9 @@ void biref_lag_integrals(const biref_spectral *sp, biref_leg_dispersion *ld, dou
     lag_at(ld, n, 0, Phi, G);
     lag_at(ld, n, last / 2, Phi, G);
     lag_at(ld, n, last, Phi, G);
-    int level = 0;
-    double res = biref_subband_level_residual(Phi, G, k, 0);
-    int inside = res > BIREF_SUBBAND_PHASE_TOL && fabs(G[last / 2]) <= sp->d_max;
-    for (int p = 1; inside && p < last; p++) {
-        if (p != last / 2) lag_at(ld, n, p, Phi, G);
-        inside = fabs(G[p]) <= sp->d_max;
-    }
-    if (inside)
-        while (res > BIREF_SUBBAND_PHASE_TOL && level < BIREF_SUBBAND_LEVELS)
-            res = biref_subband_level_residual(Phi, G, k, ++level);
+    lag_sampler at = {ld, n, Phi, G};
+    double res;
+    const int level = biref_subband_level(sp, Phi, G, k, 1, last - 1, sample_lag, &at, &res);
     /* m0 the whole band's integral, m1 its first moment in k, which the nodes' weights need. */
     double complex m0[3], m1[3], node[BIREF_BAND_NODES][3];
     const int far = level == 0 && !(fabs(G[last / 2]) <= sp->d_max);

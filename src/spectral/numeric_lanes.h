@@ -5,9 +5,10 @@
  * prepared state's. Per wavelength only the phases and the 2 x 2 multiple-reflection solve
  * remain. The kernel takes the state's coefficients once (as products that enter the round trip
  * and the exits, biref_numeric_lanes_job), computes the phases of W wavelengths at once in
- * double (a Cody-Waite reduction by pi/2 with fused multiply-adds and the Taylor polynomials of
+ * double (a Cody-Waite reduction by pi/2 with fused multiply-adds and minimax polynomials of
  * sin and cos on |r| <= pi/4), the Jones matrices, the detected intensities and the band sums,
- * all in lanes. It is not bitwise the scalar path (other association, another sincos): it agrees
+ * all in lanes; a rendered hit under real analyzers folds the detection into its coefficients
+ * (numeric_lanes_hits.inc). It is not bitwise the scalar path (other association, another sincos): it agrees
  * with it to ~1e-15 relative (test_numeric_lanes). */
 #ifndef BIREF_SPECTRAL_NUMERIC_LANES_H
 #define BIREF_SPECTRAL_NUMERIC_LANES_H

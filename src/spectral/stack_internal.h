@@ -55,8 +55,10 @@ int biref_stack_legs_child(biref_stack_legs *legs, int id, int layer, int mode);
  * (Φ_h − Φ_a), by the slab's sub-band tangents (biref_lag_integrals): over the whole band
  * (node < 0) or under node `node`'s weight (biref_band_nodes, divided by its mass). A whole band's
  * pair that differs only by legs of constant index is looked up by delta (their paths'
- * difference) as a constant stack's. *residual: where even the finest sub-bands leave a tangent
- * more than BIREF_SUBBAND_PHASE_TOL from Φ, that distance (radians), else 0. Remembers the pairs
+ * difference) as a constant stack's. *residual, the error estimate of the integrals: where even
+ * the finest sub-bands leave a tangent more than BIREF_SUBBAND_PHASE_TOL from Φ, that distance
+ * (radians); where the group path crosses the end of the sub-band tables inside the band, the
+ * estimate of stack_legs.c's crossing_error; else 0. Remembers the pairs
  * (the nodes' integrals of a band's runs and of the three bands are taken together). */
 void biref_stack_legs_lag(biref_stack_legs *legs, int a, int h, double delta, int node, double c[3], double s[3],
                           double *residual);
@@ -97,8 +99,8 @@ typedef struct {
 
 /* The pair sums of the groups (stack_spectrum.c): out's pairs and the light's XYZ per face
  * (light may be NULL), as `what` asks (the rest left 0). With legs, *err receives the error
- * estimate of the tangents: the pairs' residuals beyond the finest sub-bands (biref_stack_legs_lag)
- * times their amplitudes. BIREF_ERR_NOMEM. */
+ * estimate of the pairs' phase integrals: their estimates (biref_stack_legs_lag) times their
+ * amplitudes. BIREF_ERR_NOMEM. */
 biref_status biref_stack_face_sums(const biref_spectral *sp, const biref_stack_groups *g, const biref_light *light,
                                    const biref_stack_sums *what, biref_spectrum *out, double mixed[2][3], double *err);
 

@@ -207,24 +207,49 @@ int biref_stack_legs_flat(const biref_stack_legs *L)
 
 const biref_band_nodes *biref_stack_legs_nodes(const biref_stack_legs *L) { return biref_subband_nodes(L->sb); }
 
+/* The error of the band's own table at the middle tangent for a phase whose group path G leaves
+ * the sub-band tables at some points and not at others (it crosses their end, d_max, inside the
+ * band; the tangent's residual, which only the sub-bands would bring down, does not measure it).
+ * With a stationary point (G changes sign) the integral is not small and the middle tangent may
+ * be far from it: the residual res0 of that tangent (0 within BIREF_SUBBAND_PHASE_TOL). Without one
+ * the integral is its endpoint terms, of the size of a constant lag's at the smallest |G|, and so
+ * is the tangent's (at a larger |G|): twice the band integral's modulus at the smallest |G|, the
+ * largest of the three bands. */
+static double crossing_error(const biref_spectral *sp, const double *G, double res0)
+{
+    double lo = fabs(G[0]);
+    for (int p = 1; p < BIREF_SUBBAND_POINTS; p++) {
+        if ((G[p] < 0.0) != (G[0] < 0.0)) return res0 > BIREF_SUBBAND_PHASE_TOL ? res0 : 0.0;
+        lo = fmin(lo, fabs(G[p]));
+    }
+    double c[3], s[3], most = 0.0;
+    biref_spectral_phase_integrals(sp, lo, c, s);
+    for (int j = 0; j < 3; j++) most = fmax(most, hypot(c[j], s[j]));
+    return 2.0 * most;
+}
+
 /* m0 = S(e^{iΦ}, Λ_j), m1 = S(k e^{iΦ}, Λ_j) of a phase Φ sampled at every point, as
  * biref_lag_integrals takes them: sub-bands while every group path is inside their tables, else
- * the band's own table at the middle tangent (its integral has all but vanished there; *far).
- * Returns the residual of the tangents (radians; 0 when far). */
+ * the band's own table at the middle tangent (*far). Returns the error estimate of the integrals:
+ * the tangents' residual beyond BIREF_SUBBAND_PHASE_TOL (radians), crossing_error where the
+ * group path crosses the tables' end, 0 within the tolerance and where the group path is beyond
+ * the tables across the whole band (the integral has all but vanished there). */
 static double phase_moments(const biref_stack_legs *L, const double *Phi, const double *G, double complex m0[3],
                             double complex m1[3], int *far)
 {
     const biref_spectral *sp = L->sp;
-    const double *k = biref_subband_points(L->sb);
-    int inside = 1, level = 0;
-    for (int p = 0; inside && p < BIREF_SUBBAND_POINTS; p++) inside = fabs(G[p]) <= sp->d_max;
-    double res = biref_subband_level_residual(Phi, G, k, 0);
-    if (inside)
-        while (res > BIREF_SUBBAND_PHASE_TOL && level < BIREF_SUBBAND_LEVELS)
-            res = biref_subband_level_residual(Phi, G, k, ++level);
+    int inside = 1, beyond = 1;
+    for (int p = 0; p < BIREF_SUBBAND_POINTS; p++) {
+        inside &= fabs(G[p]) <= sp->d_max;
+        beyond &= !(fabs(G[p]) <= sp->d_max);
+    }
+    double res;
+    const int level =
+        biref_subband_level(sp, Phi, G, biref_subband_points(L->sb), 0, BIREF_SUBBAND_POINTS - 1, NULL, NULL, &res);
     *far = !inside;
     biref_subband_moments(sp, L->sb, Phi, G, level, !inside, m0, m1);
-    return inside ? res : 0.0;
+    if (inside || beyond) return inside && res > BIREF_SUBBAND_PHASE_TOL ? res : 0.0;
+    return crossing_error(sp, G, res);
 }
 
 /* The cache entry of pair (a, h): where it is, or the free one where it would go; NULL when the
@@ -271,8 +296,7 @@ void biref_stack_legs_lag(biref_stack_legs *L, int a, int h, double delta, int n
     }
     double complex m0[3], m1[3] = {0, 0, 0}, at[BIREF_BAND_NODES][3];
     int far;
-    const double res = phase_moments(L, Phi, G, m0, m1, &far);
-    *residual = res > BIREF_SUBBAND_PHASE_TOL ? res : 0.0;
+    *residual = phase_moments(L, Phi, G, m0, m1, &far);
     const double complex *out = m0;
     if (node >= 0) {
         biref_lag_node_integrals(biref_subband_nodes(L->sb), m0, m1, far, at);

@@ -132,6 +132,16 @@ biref_status biref_leg_paths_and_slopes(const biref_material *m, const double ax
 /* The largest distance of a phase Phi (group path G, both at every sample point k) from its
  * tangents at the midpoints of level `level`'s sub-bands, at their edges (radians). */
 double biref_subband_level_residual(const double *Phi, const double *G, const double *k, int level);
+/* The level of sub-bands a phase Phi (group path G, both at the sample points k) is integrated
+ * on: the coarsest whose tangents stay within BIREF_SUBBAND_PHASE_TOL of Phi, level 0 (the band's
+ * own table at the middle tangent) when that is within it or when a group path at the middle or
+ * at points from..to lies beyond the sub-band tables (|G| > d_max), else at most
+ * BIREF_SUBBAND_LEVELS; *residual: that level's (radians). Level 0 reads the ends and the middle
+ * of Phi and G, a finer level every point: sample_point(ctx, p) (may be NULL: every point is
+ * there) fills point p first, called only once the ends and the middle are not enough. The slab's
+ * lags (biref_lag_integrals) and the stacks' pair phases (stack_legs.c) choose by it. */
+int biref_subband_level(const biref_spectral *sp, const double *Phi, const double *G, const double *k, int from,
+                        int to, void (*sample_point)(void *ctx, int p), void *ctx, double *residual);
 /* The tangent of sub-band b of `level` (level 0: the whole range) at its midpoint: the offset
  * e^{i(Φ(k_b) − k_b G_b)} and the group path G_b. */
 void biref_subband_tangent(const double *Phi, const double *G, const double *k, int level, int b,

@@ -2,9 +2,11 @@
 # The three.js package (web/three): its fig. 9c example page in headless Chromium (SwiftShader)
 # against `biref render` of examples/fig9c.json at 320x180, mean dE00 <= 0.5 and 99th percentile
 # <= 2, and a CPU render of a changed slab outside those bounds (the comparison can fail); the
+# same page with method=analytic-pairs on a thin high-index plate against the CPU's analytic-pairs,
+# and outside the bounds of its eq. 26; the
 # mesh examples drawn without a WebGL error; `npm pack`'s tarball installed into an application
 # outside the repository, imported by Node (properties, refused values, shader injection) and
-# drawn by a page there (not under BIREF_TEST_QUICK). Needs web/three/node_modules (scripts/install-deps.sh runs npm ci),
+# drawn by a page there (no page under BIREF_TEST_QUICK, the sanitizer run: they run no C code). Needs web/three/node_modules (scripts/install-deps.sh runs npm ci),
 # Node, npm and Chromium; without them it fails.
 set -u
 . "$(dirname "$0")/lib.sh"
@@ -46,8 +48,19 @@ sed -e 's/"thickness_mm": 1.15/"thickness_mm": 1.25/' examples/fig9c.json >"$tmp
 expect_ok "changed cpu" render "$tmpdir/changed.json" -o "$tmpdir/changed-cpu.png" --width $W --height $H --quiet \
   --antialias none
 
+# analytic-pairs (the material's method, the shader's u_pairs): the fig. 9c plate made 6 um thick with
+# eta_o 2.2, where the pairs change the colour most (the CPU's analytic-pairs is mean dE00 1.26, p99
+# 4.0 from its eq. 26). A uniform: the page reuses the program compiled for the first one.
+sed -e 's/"thickness_mm": 1.15/"thickness_um": 6/' -e 's/"eta_o": 1.775/"eta_o": 2.2/' examples/fig9c.json >"$tmpdir/pairs.json"
+for m in analytic analytic-pairs; do
+  expect_ok "pairs scene cpu $m" render "$tmpdir/pairs.json" -o "$tmpdir/pairs-cpu-$m.png" --width $W --height $H \
+    --quiet --antialias none --method $m
+done
+
 url="file://$PWD/$pkg/examples/index.html"
-pages=("$url?example=fig9c&width=$W&height=$H&view=canvas" "$tmpdir/fig9c-three.png")
+pages=("$url?example=fig9c&width=$W&height=$H&view=canvas" "$tmpdir/fig9c-three.png"
+       "$url?example=fig9c&width=$W&height=$H&view=canvas&thickness_um=6&eta_o=2.2&method=analytic-pairs"
+       "$tmpdir/pairs-three.png")
 # Every mesh example (one page, one renderer: each program compiled once; small, as the
 # compile dominates) and the application
 # outside the repository, drawn without a WebGL error. They exercise no C code: the quick
@@ -55,6 +68,12 @@ pages=("$url?example=fig9c&width=$W&height=$H&view=canvas" "$tmpdir/fig9c-three.
 if [ -z "${BIREF_TEST_QUICK:-}" ]; then
   pages+=("$url?example=all&width=80&height=45&view=canvas" "$tmpdir/meshes.png")
   [ -f "$app/index.html" ] && pages+=("file://$app/index.html" "$tmpdir/app.png")
+fi
+# The pages run no C code either: the sanitizer run stops after the CPU renders above; the -Werror
+# run draws and checks every page.
+if [ -n "${BIREF_TEST_QUICK:-}" ]; then
+  finish
+  exit
 fi
 if ! /usr/bin/python3 tests/web/screenshot.py $W $H "${pages[@]}" 2>"$tmpdir/shot.err"; then
   echo "FAIL: pages:"; sed 's/^/  /' "$tmpdir/shot.err"; fails=$((fails + 1))
@@ -68,5 +87,15 @@ else
   mean=$(json_num mean "$tmpdir/out") p99=$(json_num p99 "$tmpdir/out")
   awk -v m="$mean" -v p="$p99" 'BEGIN { exit !(m > 0.5 || p > 2.0) }' ||
     { echo "FAIL (the comparison does not see a 9 % thicker slab: mean $mean, p99 $p99)"; fails=$((fails + 1)); }
+  expect_ok "pairs diff" diff "$tmpdir/pairs-three.png" "$tmpdir/pairs-cpu-analytic-pairs.png" --json
+  mean=$(json_num mean "$tmpdir/out") p99=$(json_num p99 "$tmpdir/out")
+  echo "analytic-pairs: three.js vs cpu dE00 mean $mean, p99 $p99"
+  awk -v m="$mean" -v p="$p99" 'BEGIN { exit !(m != "" && p != "" && m <= 0.5 && p <= 2.0) }' ||
+    { echo "FAIL (analytic-pairs): mean $mean > 0.5 or p99 $p99 > 2"; fails=$((fails + 1)); }
+  expect_ok "pairs vs eq. 26 diff" diff "$tmpdir/pairs-three.png" "$tmpdir/pairs-cpu-analytic.png" --json
+  mean=$(json_num mean "$tmpdir/out") p99=$(json_num p99 "$tmpdir/out")
+  echo "analytic-pairs: three.js vs cpu eq. 26 dE00 mean $mean, p99 $p99"
+  awk -v m="$mean" -v p="$p99" 'BEGIN { exit !(m > 0.5 || p > 2.0) }' ||
+    { echo "FAIL (the page's analytic-pairs is within the bounds of eq. 26: method ignored?)"; fails=$((fails + 1)); }
 fi
 finish

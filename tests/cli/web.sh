@@ -2,9 +2,11 @@
 # The WebGL2 viewer (web/index.html) in headless Chromium (SwiftShader, no GPU needed): a
 # screenshot of each example preset against the CPU renderer at 320x180, mean dE00 <= 0.3 and
 # 99th percentile <= 1; a slab changed through the page's controls against the CPU render of the
-# changed scene. Also: web/biref_data.js is what `biref gl-data` makes now, and the shader
+# changed scene; method=analytic-pairs against the CPU's analytic-pairs where it differs from eq. 26.
+# Also: web/biref_data.js is what `biref gl-data` makes now, and the shader
 # compiles as GLSL ES 3.00 and as desktop GLSL 4.30 with the reference compiler. A machine
 # without Chromium or glslangValidator fails this test.
+# Under BIREF_TEST_QUICK (the sanitizer run) no page is drawn: the pages run no C code.
 set -u
 . "$(dirname "$0")/lib.sh"
 W=320 H=180
@@ -71,6 +73,22 @@ sed -e 's/"thickness_um": 45/"thickness_um": 4/' examples/default.json >"$tmpdir
 expect_ok "thin cpu" render "$tmpdir/thin.json" -o "$tmpdir/thin-cpu.png" --width $W --height $H --quiet
 pages+=("$url?scene=default&width=$W&height=$H&view=canvas&thickness_um=4" "$tmpdir/thin-web.png")
 
+# analytic-pairs (the shader's u_pairs) from the query: fig. 9c made a 6 um plate with eta_o 2.2,
+# where the pairs change the colour most (the CPU's analytic-pairs is mean dE00 1.26, p99 4.0 from
+# its eq. 26).
+sed -e 's/"thickness_mm": 1.15/"thickness_um": 6/' -e 's/"eta_o": 1.775/"eta_o": 2.2/' examples/fig9c.json >"$tmpdir/pairs.json"
+for m in analytic analytic-pairs; do
+  expect_ok "pairs scene cpu $m" render "$tmpdir/pairs.json" -o "$tmpdir/pairs-cpu-$m.png" --width $W --height $H \
+    --quiet --antialias none --method $m
+done
+pages+=("$url?scene=fig9c&width=$W&height=$H&view=canvas&thickness_um=6&eta_o=2.2&method=analytic-pairs" "$tmpdir/pairs-web.png")
+
+# The pages run no C code: the sanitizer run (BIREF_TEST_QUICK) stops after the CPU renders above;
+# the -Werror run draws and checks every page.
+if [ -n "${BIREF_TEST_QUICK:-}" ]; then
+  finish
+  exit
+fi
 if ! /usr/bin/python3 tests/web/screenshot.py $W $H "${pages[@]}" 2>"$tmpdir/shot.err"; then
   echo "FAIL: screenshots:"; sed 's/^/  /' "$tmpdir/shot.err"; fails=$((fails + 1))
 else
@@ -80,6 +98,11 @@ else
   done
   check_close "changed through the controls" "$tmpdir/changed-web.png" "$tmpdir/changed-cpu.png"
   check_close "thin slab through the controls" "$tmpdir/thin-web.png" "$tmpdir/thin-cpu.png"
+  check_close "analytic-pairs from the query" "$tmpdir/pairs-web.png" "$tmpdir/pairs-cpu-analytic-pairs.png"
+  expect_ok "analytic-pairs vs eq. 26" diff "$tmpdir/pairs-web.png" "$tmpdir/pairs-cpu-analytic.png" --json
+  mean=$(json_num mean "$tmpdir/out")
+  awk -v m="$mean" 'BEGIN { exit !(m > 0.3) }' ||
+    { echo "FAIL (the page's analytic-pairs is only $mean from eq. 26: method ignored?)"; fails=$((fails + 1)); }
   # ... and the comparison can fail: the changed page is far from the unchanged scene.
   expect_ok "changed vs unchanged" diff "$tmpdir/changed-web.png" "$tmpdir/fig9c-cpu.png" --json
   mean=$(json_num mean "$tmpdir/out")
@@ -101,6 +124,9 @@ errs=(
   "$url?scene=fig9c&axis_tilt=%2010" "axis_tilt: expected a number"
   "$url?scene=fig9c&view=gallery" "view: expected canvas"
   "$url?scene=fig9c&widht=10" "unknown query key 'widht'"
+  "$url?scene=fig9c&method=numeric" "method: expected analytic or analytic-pairs (the shader's methods), got 'numeric'"
+  "$url?scene=fig9c&method=Analytic" "method: expected analytic or analytic-pairs"
+  "$url?scene=fig9c&method=analytic&method=analytic-pairs" "query key 'method' given twice"
   "$url?scene=fig9c&width=10&width=20" "query key 'width' given twice"
 )
 if ! /usr/bin/python3 tests/web/screenshot.py $W $H --timeout 60 --errors "${errs[@]}" 2>"$tmpdir/errs.err"; then

@@ -157,6 +157,7 @@ static int make_plans(const acc_run *run, const acc_options *o, biref_spectral *
         io[k].samples = 0; /* none */
     }
     io[M_ANALYTIC].method = BIREF_METHOD_ANALYTIC;
+    io[M_PAIRS].method = BIREF_METHOD_ANALYTIC_PAIRS;
     io[M_EXPANSION].method = BIREF_METHOD_EXPANSION;
     for (int k = 0; k < NNUM; k++) io[M_N3 + k].samples = ACC_NUMERIC_N[k];
     io[M_GT].method = BIREF_METHOD_GROUND_TRUTH;

@@ -5,9 +5,9 @@
 
 #include "study.h"
 
-int acc_analytic_pass(const acc_result *r, int w)
+int acc_envelope_pass(const acc_result *r, int k, int w)
 {
-    const acc_stat *s = &r->bin[0][M_ANALYTIC][w];
+    const acc_stat *s = &r->bin[0][k][w];
     return s->n > 0 && stat_mean(s) <= 1.0 && s->max <= 4.0;
 }
 

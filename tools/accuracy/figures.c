@@ -20,6 +20,7 @@ int acc_write_plots(const acc_run *run, const char *dir)
             /* The numeric family is labelled by its sample count; the other methods by the legend. */
             p[k].label = k == M_GT ? "16384 = ground truth" : k >= M_N3 ? ACC_METHOD_KEY[k] + strlen("numeric-") : NULL;
             p[k].style = k == M_ANALYTIC    ? ACC_STYLE_ANALYTIC
+                         : k == M_PAIRS     ? ACC_STYLE_PAIRS
                          : k == M_EXPANSION ? ACC_STYLE_EXPANSION
                          : k == M_GT        ? ACC_STYLE_GROUND_TRUTH
                                             : ACC_STYLE_NUMERIC;
@@ -39,9 +40,9 @@ int acc_write_plots(const acc_run *run, const char *dir)
     }
     /* ΔE00 against θ for the methods compared in docs/ACCURACY.md (and the paper's ground truth, whose
      * aliasing on the 3.5 mm slab shows here). */
-    static const int METH[] = {M_ANALYTIC, M_EXPANSION, M_N32, M_N128, M_GT};
+    static const int METH[] = {M_ANALYTIC, M_PAIRS, M_EXPANSION, M_N32, M_N128, M_GT};
     enum { NMETH = sizeof METH / sizeof METH[0] };
-    static const int COLOR[NMETH] = {FIG_RED, FIG_BLUE, FIG_GREEN, FIG_ORANGE, FIG_PURPLE};
+    static const int COLOR[NMETH] = {FIG_RED, FIG_ORANGE, FIG_BLUE, FIG_GREEN, FIG_BROWN, FIG_PURPLE};
     const char *names[NMETH];
     for (int q = 0; q < NMETH; q++) names[q] = ACC_METHOD_KEY[METH[q]];
     const int nm = run->nbase;

@@ -92,6 +92,7 @@ static int style_color(acc_plot_style s)
 {
     switch (s) {
     case ACC_STYLE_ANALYTIC: return FIG_RED;
+    case ACC_STYLE_PAIRS: return FIG_ORANGE;
     case ACC_STYLE_EXPANSION: return FIG_BLUE;
     case ACC_STYLE_GROUND_TRUTH: return FIG_BLACK;
     default: return FIG_GREY;
@@ -229,6 +230,7 @@ int acc_plot_vs_cost(const char *path, const acc_plot_cost_point *p, int n, cons
     const legend_entry leg[] = {{"max over the samples", FIG_BLACK, 0, 0.0, MARK_MAX},
                                 {"mean over the samples", FIG_BLACK, 0, 0.0, MARK_MEAN},
                                 {"analytic (paper, eq. 26)", FIG_RED, 0, 0.0, MARK_MEAN},
+                                {"analytic-pairs", FIG_ORANGE, 0, 0.0, MARK_MEAN},
                                 {"path-group expansion", FIG_BLUE, 0, 0.0, MARK_MEAN},
                                 {"numeric, N samples (label: N)", FIG_GREY, 1, 1.0, MARK_MEAN},
                                 {"ΔE00 = 1", FIG_GREY, 3, 1.0, NULL}};

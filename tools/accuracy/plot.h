@@ -5,7 +5,13 @@
 #define BIREF_TOOLS_ACCURACY_PLOT_H
 
 /* How a method is drawn: its own colour, or the numeric family (joined by a line in order). */
-typedef enum { ACC_STYLE_ANALYTIC, ACC_STYLE_EXPANSION, ACC_STYLE_NUMERIC, ACC_STYLE_GROUND_TRUTH } acc_plot_style;
+typedef enum {
+    ACC_STYLE_ANALYTIC,
+    ACC_STYLE_PAIRS,
+    ACC_STYLE_EXPANSION,
+    ACC_STYLE_NUMERIC,
+    ACC_STYLE_GROUND_TRUTH
+} acc_plot_style;
 
 typedef struct {
     const char *label; /* drawn under the mean marker, or NULL */

@@ -28,9 +28,10 @@
 #include "cli_mpi.h"
 #include "study.h"
 
-const char *const ACC_METHOD_KEY[NM] = {"analytic",     "expansion",    "numeric-3",         "numeric-8",
-                                        "numeric-16",   "numeric-32",   "numeric-64",        "numeric-128",
-                                        "ground-truth", "ref-vs-check", "analytic-vs-check", "expansion-vs-check"};
+const char *const ACC_METHOD_KEY[NM] = {"analytic",     "analytic-pairs", "expansion",         "numeric-3",
+                                        "numeric-8",    "numeric-16",     "numeric-32",        "numeric-64",
+                                        "numeric-128",  "ground-truth",   "ref-vs-check",      "analytic-vs-check",
+                                        "expansion-vs-check"};
 const int ACC_NUMERIC_N[NNUM] = {3, 8, 16, 32, 64, 128};
 const char *const ACC_TR[2] = {"T", "R"};
 

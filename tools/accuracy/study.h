@@ -37,9 +37,11 @@
 
 /* The compared methods (each against the reference), then the comparisons with the denser check
  * integration: ref-vs-check tests the reference itself; analytic-vs-check and expansion-vs-check
- * tell a method's error from the reference's. */
+ * tell a method's error from the reference's. M_PAIRS: the analytic-pairs method (eq. 26 plus
+ * transmission's sibling and entry pairs, beyond the paper; docs/PHYSICS.md §4). */
 enum {
     M_ANALYTIC,
+    M_PAIRS,
     M_EXPANSION,
     M_N3,
     M_N8,
@@ -160,9 +162,10 @@ int acc_measure_cost(acc_run *run, const acc_plans *pl);
 
 /* criteria.c: the two acceptance criteria the study reports. */
 
-/* The analytic method against the reference, θ 0–70° over all azimuths: mean ΔE00 <= 1 and
- * max <= 4 (transmission w = 0 or reflection w = 1). */
-int acc_analytic_pass(const acc_result *r, int w);
+/* Method k (the analytic method, or analytic-pairs) against the reference, θ 0–70° over all
+ * azimuths: mean ΔE00 <= 1 and max <= 4, the paper's envelope (transmission w = 0 or reflection
+ * w = 1). */
+int acc_envelope_pass(const acc_result *r, int k, int w);
 
 /* The expansion's criteria. (a) for each base material and every θ in 0–85°, the expansion
  * within ΔE00 <= EXPANSION_DE_MAX of the reference (grid and near-axis samples), at no more than

@@ -24,8 +24,10 @@ typedef double vd_in __attribute__((vector_size(PACKET_W * sizeof(double)), may_
 /* The same from memory aligned only as double (the caller's hits). */
 typedef double vd_u __attribute__((vector_size(PACKET_W * sizeof(double)), may_alias, aligned(sizeof(double))));
 
-/* x in every lane (a broadcast: (vd){0} + x would cost an addition, which IEEE rules keep). */
-static inline vd vb(double x)
+/* x in every lane (a broadcast: (vd){0} + x would cost an addition, which IEEE rules keep).
+ * Always inlined: an out-of-line copy would return a vector wider than the baseline set's
+ * registers (a -Wpsabi error), which GCC may make when a large kernel exhausts its inline budget. */
+static inline __attribute__((always_inline)) vd vb(double x)
 {
     vd v;
     for (int l = 0; l < PACKET_W; l++) v[l] = x;

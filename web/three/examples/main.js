@@ -2,7 +2,8 @@
 // mesh scenes in turn on one renderer) &width=W
 // &height=H &view=canvas (only the canvas, for tests) &frames=N (time N more frames after the
 // first) &material=iridescence (three.js's own MeshPhysicalMaterial with iridescence in place of
-// every birefringent one, to compare costs). fig9c also takes thickness_um and eta_o for its slab.
+// every birefringent one, to compare costs) &method=analytic-pairs (every birefringent material's
+// method; default analytic, the paper's eq. 26). fig9c also takes thickness_um and eta_o for its slab.
 // document.title becomes "biref ready" once the first frame (or the timed frames) is drawn, or
 // "biref error: ..." on any error, a shader that does not compile or a WebGL error.
 import * as THREE from 'three';
@@ -39,8 +40,10 @@ $('view').appendChild(renderer.domElement);
 const pmrem = new THREE.PMREMGenerator(renderer);
 
 // A birefringent material, or for cost comparisons three.js's thin-film iridescence in its place.
+// A bad method is the material's RangeError, shown by the error handler above.
+const method = params.has('method') ? { method: params.get('method') } : {};
 function slabMaterial(options) {
-  if (!useIridescence) return new BirefringentMaterial(options);
+  if (!useIridescence) return new BirefringentMaterial({ ...options, ...method });
   return new THREE.MeshPhysicalMaterial({
     side: options.side, roughness: 0, metalness: 0, transmission: 1, thickness: 0,
     iridescence: 1, iridescenceIOR: 1.3, iridescenceThicknessRange: [100, 400],

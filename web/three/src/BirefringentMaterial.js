@@ -9,8 +9,11 @@ import {
 import { shaderSource, table, plans, presets } from './biref_data.js';
 
 const OWN_KEYS = ['ordinaryIOR', 'extraordinaryIOR', 'surroundingIOR', 'slabThickness', 'slabThicknessMap', 'opticAxis',
-  'opticAxisMap', 'opticAxisSpace', 'polarization', 'polarizationS', 'polarizerDirection', 'analyzer', 'analyzerDirection'];
+  'opticAxisMap', 'opticAxisSpace', 'polarization', 'polarizationS', 'polarizerDirection', 'analyzer', 'analyzerDirection',
+  'method'];
 const POLARIZATIONS = { unpolarized: 0, sp: 1, linear: 2 };
+// The shader's methods, as the uniform u_pairs (the library's other methods are CPU-only).
+const METHODS = { analytic: 0, 'analytic-pairs': 1 };
 const ANALYZERS = { none: 0, s: 1, p: 2, linear: 3 };
 
 // The look-up table, the sample plans and their constants: one copy per page, shared by every
@@ -149,6 +152,7 @@ export class BirefringentMaterial extends MeshPhysicalMaterial {
       biref_analyzer_dir: { value: new Vector3(0, 0, 1) },
       biref_thickness_map: { value: null },
       biref_axis_map: { value: null },
+      u_pairs: { value: 0 },
     };
     // The slab decides colour and energy; three.js's physical model supplies only the light:
     // a white metal (Fresnel one) gives the lights' bare specular lobes, transmission one the
@@ -231,6 +235,12 @@ export class BirefringentMaterial extends MeshPhysicalMaterial {
   get analyzer() { return keyOf(ANALYZERS, this.birefUniforms.biref_light.value.z); }
   set analyzer(v) { this.birefUniforms.biref_light.value.z = lookUp('analyzer', ANALYZERS, v); }
 
+  /** Spectral integration: 'analytic' (default; the paper's eq. 26) or 'analytic-pairs' (eq. 26
+   * plus transmission's sibling and entry pairs, beyond the paper; the library's
+   * BIREF_METHOD_ANALYTIC_PAIRS). A uniform: switching costs no shader compile. */
+  get method() { return keyOf(METHODS, this.birefUniforms.u_pairs.value); }
+  set method(v) { this.birefUniforms.u_pairs.value = lookUp('method', METHODS, v); }
+
   /** World-space direction of a linear analyzer (analyzer 'linear'), stored normalised. */
   get analyzerDirection() { return this.birefUniforms.biref_analyzer_dir.value; }
   set analyzerDirection(v) { this.birefUniforms.biref_analyzer_dir.value.copy(unit('analyzerDirection', v)); }
@@ -283,7 +293,7 @@ function checkIndex(name, v) {
 }
 
 function lookUp(name, table, v) {
-  if (!(v in table)) throw new RangeError(`${name}: '${v}' is not one of ${Object.keys(table).join(', ')}`);
+  if (typeof v !== 'string' || !Object.hasOwn(table, v)) throw new RangeError(`${name}: '${v}' is not one of ${Object.keys(table).join(', ')}`);
   return table[v];
 }
 

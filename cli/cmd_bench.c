@@ -197,9 +197,10 @@ static void time_more_frames(const biref_renderer *r, int H, float *xyz, long fr
 {
     double wall[1000], cpu[1000];
     const double t_first = b->first_ms / 1e3;
-    long n = (long)floor(left_s / fmax(t_first, 1e-9));
+    /* The budget may already be spent (a first frame longer than --max-seconds, or the probe
+     * was the whole frame): no more frames then. */
+    long n = left_s > 0 ? (long)fmin(floor(left_s / fmax(t_first, 1e-9)), 1000.0) : 0;
     if (n > frames) n = frames;
-    if (n > 1000) n = 1000;
     int rows = 0;
     for (long i = 0; i < n; i++) wall[i] = 1e3 * time_rows(r, H, H, xyz, &rows, &cpu[i]), cpu[i] *= 1e3;
     b->frames_timed = (int)n;

@@ -135,6 +135,9 @@ expect_ok "bench json again" bench --scene "$good" --width 32 --height 18 --meth
 expect_grep "bench times frames after the first" '"frames_timed":[[:space:]]*[1-9]'
 expect_ok "bench first frame alone" bench --scene "$good" --width 32 --height 18 --methods analytic --frames 0 --json
 expect_grep "bench frames 0" '"frames_timed":[[:space:]]*0,'
+# A budget spent by the first frame (here the probe row is the whole frame) times no more frames.
+expect_ok "bench budget spent" bench --scene "$good" --width 8 --height 1 --methods analytic --max-seconds 1e-9 --json
+expect_grep "bench budget spent: no more frames" '"frames_timed":[[:space:]]*0,'
 expect_error "bench gl without frames" bench --scene "$good" --width 32 --height 18 --methods analytic --backend gl \
   --frames 0
 expect_ok "bench extrapolates" bench --scene "$good" --width 32 --height 18 --methods ground-truth \

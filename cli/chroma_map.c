@@ -7,12 +7,6 @@
 #include "cli_render.h"
 #include "de_scale.h"
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 int cli_chroma_map_write(const char *cmd, const char *path, int W, int H, const float *xyz, cli_chroma_stats *stats)
 {
     const size_t n = (size_t)W * H;
@@ -36,7 +30,7 @@ int cli_chroma_map_write(const char *cmd, const char *path, int W, int H, const 
     }
     int rc = cli_de_map_write(cmd, path, W, H, map, "dE00 from grey:");
     if (stats) {
-        qsort(de, n, sizeof *de, cmp_double);
+        qsort(de, n, sizeof *de, cli_cmp_double);
         size_t rank = (size_t)ceil(0.99 * (double)n);
         stats->mean = sum / (double)n;
         stats->p99 = de[rank > 0 ? rank - 1 : 0];

@@ -201,3 +201,9 @@ void cli_print_jones_table(const char *title, const biref_jones *J, double P[2][
         printf("\n");
     }
 }
+
+int cli_cmp_double(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}

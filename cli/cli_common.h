@@ -25,6 +25,9 @@ int cli_parse_int(const char *cmd, const char *opt, const char *text, long lo, l
 /* Parses n comma-separated finite numbers ("a,b,c"). */
 int cli_parse_list(const char *cmd, const char *opt, const char *text, double *out, int n);
 
+/* qsort's comparison for doubles, ascending. */
+int cli_cmp_double(const void *a, const void *b);
+
 /* A Jones matrix and its power fractions as a table on stdout (rows: input s/p, columns: output). */
 void cli_print_jones_table(const char *title, const biref_jones *J, double P[2][2]);
 

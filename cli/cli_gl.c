@@ -36,12 +36,6 @@ int cli_gl_render(const char *cmd, const biref_scene *scene, int pairs, float *x
     return rc;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 int cli_gl_bench(const char *cmd, const biref_scene *scene, int frames, double *gpu_ms, double *wall_ms, char *device,
                  size_t device_len)
 {
@@ -66,8 +60,8 @@ int cli_gl_bench(const char *cmd, const biref_scene *scene, int frames, double *
     }
     if (!rc) {
         /* Frame 0 is the warm-up (shader JIT, first texture upload). */
-        qsort(gpu + 1, (size_t)frames, sizeof *gpu, cmp_double);
-        qsort(wall + 1, (size_t)frames, sizeof *wall, cmp_double);
+        qsort(gpu + 1, (size_t)frames, sizeof *gpu, cli_cmp_double);
+        qsort(wall + 1, (size_t)frames, sizeof *wall, cli_cmp_double);
         *gpu_ms = gpu[1 + frames / 2];
         *wall_ms = wall[1 + frames / 2];
     }

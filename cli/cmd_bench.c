@@ -177,15 +177,9 @@ const cli_command_spec CLI_BENCH = {
     NULL,
 };
 
-static int cmp_double(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 static double median_of(double *v, int n)
 {
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    qsort(v, (size_t)n, sizeof *v, cli_cmp_double);
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
@@ -195,12 +189,11 @@ static double median_of(double *v, int n)
  * has descheduled, their start varies by milliseconds). */
 static void time_more_frames(const biref_renderer *r, int H, float *xyz, long frames, double left_s, bench_method *b)
 {
-    double wall[1000], cpu[1000];
+    double wall[1000], cpu[1000]; /* --frames is at most 1000 */
     const double t_first = b->first_ms / 1e3;
     /* The budget may already be spent (a first frame longer than --max-seconds, or the probe
      * was the whole frame): no more frames then. */
-    long n = left_s > 0 ? (long)fmin(floor(left_s / fmax(t_first, 1e-9)), 1000.0) : 0;
-    if (n > frames) n = frames;
+    const long n = left_s > 0 ? (long)fmin(floor(left_s / fmax(t_first, 1e-9)), (double)frames) : 0;
     int rows = 0;
     for (long i = 0; i < n; i++) wall[i] = 1e3 * time_rows(r, H, H, xyz, &rows, &cpu[i]), cpu[i] *= 1e3;
     b->frames_timed = (int)n;

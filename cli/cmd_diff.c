@@ -49,12 +49,6 @@ const cli_command_spec CLI_DIFF = {
     NULL,
 };
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 int cmd_diff(int argc, char **argv)
 {
     diff_args args = {NULL, 0, 0};
@@ -129,7 +123,7 @@ int cmd_diff(int argc, char **argv)
     }
     double mean = sum / (double)n;
     /* 95th percentile: nearest rank on the sorted differences. */
-    qsort(de, n, sizeof *de, cmp_double);
+    qsort(de, n, sizeof *de, cli_cmp_double);
     size_t rank = (size_t)ceil(0.95 * (double)n);
     double p95 = de[rank > 0 ? rank - 1 : 0];
     rank = (size_t)ceil(0.99 * (double)n);

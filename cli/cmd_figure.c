@@ -127,7 +127,7 @@ static int fig9_scene(const fig_ctx *c, const char *scenes, const char *name, FI
             above1 += e > 1.0;
             cli_de_color(e, map + 3 * i);
         }
-        qsort(sorted, npx, sizeof(double), fig_cmp_double);
+        qsort(sorted, npx, sizeof(double), cli_cmp_double);
         double p95 = sorted[(size_t)floor(0.95 * (double)(npx - 1))];
         fprintf(csv, "%s,%s,%d,%d,%.4f,%.4f,%.4f,%.4f,%.3f\n", name, FIG9_METHODS[m].name, w, h, sum / (double)npx, p95,
                 mx, (double)above1 / (double)npx, secs[m]);

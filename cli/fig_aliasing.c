@@ -106,12 +106,6 @@ static double render_pe(const biref_spectral *sp, biref_pe_light_kind light, bir
     return t;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 typedef struct {
     int w, h; /* crop */
     unsigned char *rgb[NVAR], *map[NVAR];
@@ -161,7 +155,7 @@ static int run_case(const biref_spectral *sp, const alias_case *ac, const char *
             sorted[i] = e, sum += e, mx = fmax(mx, e);
             cli_de_color(e, res->map[v] + 3 * i);
         }
-        qsort(sorted, npx, sizeof *sorted, cmp_double);
+        qsort(sorted, npx, sizeof *sorted, cli_cmp_double);
         res->mean[v] = sum / (double)npx;
         res->p95[v] = sorted[(size_t)floor(0.95 * (double)(npx - 1))];
         res->max[v] = mx;

@@ -92,8 +92,3 @@ void fig_chromaticity(const double xyz[3], double *x, double *y)
     *y = s > 0 ? xyz[1] / s : NAN;
 }
 
-int fig_cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}

@@ -44,7 +44,6 @@ void fig_draw_rgb_tile(cairo_t *cr, const unsigned char *rgb, int w, int h, doub
 cairo_status_t fig_write_stream(void *closure, const unsigned char *data, unsigned int length);
 static inline double fig_deg2rad(double d) { return d * M_PI / 180.0; }
 void fig_chromaticity(const double xyz[3], double *x, double *y);
-int fig_cmp_double(const void *a, const void *b);
 
 /* The figures of fig_spectral.c (slab colours, no rendering). Each returns a CLI exit code. */
 int fig5(const fig_ctx *c);

@@ -18,8 +18,8 @@
  * One source, expansion_packet_kernel.inc, compiled per instruction set like the analytic kernel
  * (expansion_packet_<isa>.c, CMakeLists.txt biref_isa_object), on its primitives (simd/<isa>.h,
  * packet_lookup.inc, packet_setup.inc, packet_limit.inc), with its lag integrals
- * (expansion_packet_lags.inc), coherences (expansion_packet_coherence.inc) and lights
- * (expansion_packet_light.inc). */
+ * (expansion_packet_lags.inc), coherences (expansion_packet_coherence.inc), tail and order
+ * choice (expansion_packet_orders.inc) and lights (expansion_packet_light.inc). */
 #ifndef BIREF_EXPANSION_PACKET_H
 #define BIREF_EXPANSION_PACKET_H
 
